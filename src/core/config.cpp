@@ -11,13 +11,20 @@ namespace config_internal {
 
 std::string JsonTypeName(const nlohmann::json& j) {
   switch (j.type()) {
-    case nlohmann::json::value_t::null: return "null";
-    case nlohmann::json::value_t::object: return "an object";
-    case nlohmann::json::value_t::array: return "an array";
-    case nlohmann::json::value_t::string: return "a string";
-    case nlohmann::json::value_t::boolean: return "a boolean";
-    case nlohmann::json::value_t::number_float: return "a number";
-    default: return "an integer";
+    case nlohmann::json::value_t::null:
+      return "null";
+    case nlohmann::json::value_t::object:
+      return "an object";
+    case nlohmann::json::value_t::array:
+      return "an array";
+    case nlohmann::json::value_t::string:
+      return "a string";
+    case nlohmann::json::value_t::boolean:
+      return "a boolean";
+    case nlohmann::json::value_t::number_float:
+      return "a number";
+    default:
+      return "an integer";
   }
 }
 
@@ -41,7 +48,8 @@ void JsonReadArchive::CheckNoUnknownKeys() const {
 
 nlohmann::json ReadJsonFile(const std::filesystem::path& path) {
   std::ifstream in(path);
-  if (!in) ThrowInputError(path.string(), "", "a readable JSON file", "a missing or unreadable file");
+  if (!in)
+    ThrowInputError(path.string(), "", "a readable JSON file", "a missing or unreadable file");
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();

@@ -22,7 +22,7 @@ FieldError::FieldError(std::string field, std::string expected, std::string got)
 
 FieldError FieldError::WithPrefix(const std::string& prefix) const {
   if (prefix.empty()) return *this;
-  std::string joined = field_.empty() ? prefix
+  std::string joined = field_.empty()     ? prefix
                        : field_[0] == '[' ? prefix + field_
                                           : prefix + "." + field_;
   return FieldError(joined, expected_, got_);
@@ -55,8 +55,7 @@ void Require(bool ok, const std::string& field, const std::string& expected) {
 }
 
 namespace internal {
-void AbortInvariant(const char* condition, const char* file, int line,
-                    const std::string& message) {
+void AbortInvariant(const char* condition, const char* file, int line, const std::string& message) {
   std::fprintf(stderr, "SIMS invariant violated at %s:%d: %s%s%s\n", file, line, condition,
                message.empty() ? "" : " -- ", message.c_str());
   std::fflush(stderr);

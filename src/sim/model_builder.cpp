@@ -29,11 +29,20 @@ std::string XmlEscape(const std::string& in) {
   std::string out;
   for (char c : in) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -74,8 +83,8 @@ std::string ComposeModelXml(const std::string& humanoid_xml, const StaticGeometr
     if (g.type == StaticGeom::Type::kBox) {
       const Eigen::Quaterniond q(g.X_WG.rotation());
       geoms << "    <geom name=\"" << name << "\" type=\"box\" pos=\"" << Vec(g.X_WG.translation())
-            << "\" quat=\"" << q.w() << " " << q.x() << " " << q.y() << " " << q.z()
-            << "\" size=\"" << Vec(g.half_size) << "\"" << common << "/>\n";
+            << "\" quat=\"" << q.w() << " " << q.x() << " " << q.y() << " " << q.z() << "\" size=\""
+            << Vec(g.half_size) << "\"" << common << "/>\n";
     } else {
       if (g.vertices.size() < 4)
         ThrowInputError(source, "geom '" + name + "'", "a convex mesh with at least 4 points",

@@ -17,9 +17,9 @@ std::filesystem::path TestData(const std::string& relative) {
 
 std::filesystem::path TempDir(const std::string& tag) {
   static std::atomic<int> counter{0};
-  auto dir = std::filesystem::temp_directory_path() /
-             ("sims_test_" + tag + "_" + std::to_string(::getpid()) + "_" +
-              std::to_string(counter++));
+  auto dir =
+      std::filesystem::temp_directory_path() /
+      ("sims_test_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -62,8 +62,8 @@ struct IsSerializable<
 template <typename T, typename = void>
 struct HasValidate : std::false_type {};
 template <typename T>
-struct HasValidate<T, std::void_t<decltype(std::declval<const T&>().Validate())>>
-    : std::true_type {};
+struct HasValidate<T, std::void_t<decltype(std::declval<const T&>().Validate())>> : std::true_type {
+};
 
 template <typename T>
 struct IsVector : std::false_type {};

@@ -52,14 +52,14 @@ namespace internal {
 }  // namespace sims
 
 /// Invariant check that stays on in release builds; aborts on failure (a bug, not bad input).
-#define SIMS_CHECK(cond)                                                  \
-  do {                                                                    \
+#define SIMS_CHECK(cond)                                                          \
+  do {                                                                            \
     if (!(cond)) ::sims::internal::AbortInvariant(#cond, __FILE__, __LINE__, {}); \
   } while (0)
 
 /// SIMS_CHECK with an explanatory message (any expression convertible to std::string).
-#define SIMS_CHECK_MSG(cond, msg)                                            \
-  do {                                                                       \
+#define SIMS_CHECK_MSG(cond, msg)                                                    \
+  do {                                                                               \
     if (!(cond)) ::sims::internal::AbortInvariant(#cond, __FILE__, __LINE__, (msg)); \
   } while (0)
 

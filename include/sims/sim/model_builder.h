@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <mujoco/mujoco.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <mujoco/mujoco.h>
 
 namespace sims::sim {
 

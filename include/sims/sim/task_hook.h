@@ -1,0 +1,62 @@
+// The interface through which skills (task/) add observations, rewards, terminations and
+// initial states to the batched environment without touching it. Calls for different
+// environments run concurrently (OpenMP), so an implementation may only touch per-env slots.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sims/core/rng.h"
+#include "sims/sim/state.h"
+
+namespace sims::sim {
+
+/// Read-only view of one environment after physics (or right after a reset).
+struct EnvView {
+  int env_id = 0;                      ///< Environment index.
+  const Humanoid* humanoid = nullptr;  ///< Shared humanoid layout/model.
+  const mjData* data = nullptr;        ///< This env's MuJoCo data (positions/velocities fresh).
+  const HumanoidPose* pose = nullptr;  ///< Generalised state.
+  const BodyStates* bodies = nullptr;  ///< World-frame body states.
+  int progress = 0;                    ///< Control steps since the reset.
+  double control_dt = 1.0 / 30.0;      ///< Seconds per control step.
+};
+
+/// The initial state of an episode; the env fills a default that the task may replace.
+struct InitialState {
+  HumanoidPose pose;                  ///< State to start from.
+  std::vector<HumanoidPose> history;  ///< Optional poses at t − k·dt, k = 1..9 (AMP history).
+  int termination_grace_steps = 0;    ///< Steps during which falls do not terminate (get-up).
+  bool reference = false;             ///< True when taken from a motion clip.
+};
+
+/// What a task reports after each control step of one env.
+struct TaskStepResult {
+  float reward = 0.0f;     ///< Task reward r_task.
+  bool success = false;    ///< Success condition holds at this step.
+  bool terminate = false;  ///< End the episode as a failure (no bootstrap).
+  bool truncate = false;   ///< End the episode without failure (bootstrap), e.g. success held.
+};
+
+/// A skill plugged into the environment.
+class TaskHook {
+ public:
+  virtual ~TaskHook() = default;
+  /// Task observation size appended after the 223 self-observation values.
+  virtual int obs_dim() const = 0;
+  /// Chooses the initial state (may leave the env's default); runs before physics state is set.
+  virtual void SampleInitialState(int env_id, Rng& rng, InitialState* init) = 0;
+  /// Samples goals/objects once the initial state is in place.
+  virtual void OnReset(const EnvView& view, Rng& rng) = 0;
+  /// Reward, success and termination after a control step.
+  virtual TaskStepResult Step(const EnvView& view) = 0;
+  /// Writes obs_dim() task observation values.
+  virtual void Observe(const EnvView& view, float* out) const = 0;
+  /// Bitmask of AMP bodies allowed to touch the ground/scene without counting as a fall.
+  virtual uint32_t contact_body_mask() const;
+};
+
+/// Feet only (ASE's default contact bodies).
+uint32_t FeetContactMask();
+
+}  // namespace sims::sim

@@ -1,0 +1,301 @@
+#include "sims/sim/env.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <omp.h>
+
+#include "sims/core/error.h"
+#include "sims/core/parallel.h"
+
+namespace sims::sim {
+
+uint32_t TaskHook::contact_body_mask() const { return FeetContactMask(); }
+
+uint32_t FeetContactMask() { return (1u << kRightFoot) | (1u << kLeftFoot); }
+
+void EnvConfig::Validate() const {
+  Require(num_envs > 0, "num_envs", "a positive integer");
+  Require(substeps > 0, "substeps", "a positive integer");
+  Require(episode_length > 1, "episode_length", "an integer > 1");
+  Require(termination_height >= 0, "termination_height", "a non-negative height (m)");
+  Require(spawn_radius >= 0, "spawn_radius", "a non-negative radius (m)");
+  Require(max_velocity > 0, "max_velocity", "a positive number");
+  Require(amp_history >= 1, "amp_history", "at least 1 step");
+  Require(threads >= 0, "threads", "0 (all hardware threads) or a positive count");
+}
+
+namespace {
+enum EndReason : uint8_t { kNone = 0, kFall, kTimeout, kTaskTerminate, kTaskTruncate, kUnstable };
+constexpr int kWatchedWarnings[] = {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC, mjWARN_BADCTRL};
+}  // namespace
+
+struct BatchedEnv::Slot {
+  MjDataPtr data;
+  Rng rng;
+  HumanoidPose pose;
+  BodyStates bodies;
+  std::vector<float> amp_hist;  // [amp_history, 125], slot 0 = current step
+  int progress = 0;
+  int grace = 0;
+  int warnings_seen = 0;
+  double targets[kNumDofs];
+};
+
+BatchedEnv::BatchedEnv(std::shared_ptr<const Humanoid> humanoid, const EnvConfig& config,
+                       std::shared_ptr<TaskHook> task)
+    : humanoid_(std::move(humanoid)), config_(config), task_(std::move(task)) {
+  SIMS_CHECK(humanoid_ != nullptr);
+  ValidateConfig(config_, "EnvConfig");
+  obs_dim_ = kSelfObsDim + (task_ ? task_->obs_dim() : 0);
+  threads_ = config_.threads > 0 ? config_.threads : ThreadCount();
+  obs_options_.root_height = config_.root_height_obs;
+  obs_options_.local_root_rot = config_.local_root_obs;
+  contact_mask_ = task_ ? task_->contact_body_mask() : FeetContactMask();
+  const int n = config_.num_envs;
+  obs_.assign(static_cast<size_t>(n) * obs_dim_, 0.0f);
+  terminal_obs_.assign(obs_.size(), 0.0f);
+  rewards_.assign(n, 0.0f);
+  amp_obs_.assign(static_cast<size_t>(n) * amp_obs_dim(), 0.0f);
+  dones_.assign(n, 0);
+  terminated_.assign(n, 0);
+  successes_.assign(n, 0);
+  end_reason_.assign(n, kNone);
+  slots_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    slots_[i] = std::make_unique<Slot>();
+    slots_[i]->data = MakeData(humanoid_->model());
+    slots_[i]->rng = Rng::ForEnv(config_.seed, i);
+    slots_[i]->amp_hist.assign(static_cast<size_t>(amp_obs_dim()), 0.0f);
+  }
+  Reset();
+}
+
+BatchedEnv::~BatchedEnv() = default;
+
+double BatchedEnv::control_dt() const {
+  return humanoid_->model()->opt.timestep * config_.substeps;
+}
+
+mjData* BatchedEnv::data(int env_id) { return slots_.at(env_id)->data.get(); }
+const HumanoidPose& BatchedEnv::pose(int env_id) const { return slots_.at(env_id)->pose; }
+const BodyStates& BatchedEnv::bodies(int env_id) const { return slots_.at(env_id)->bodies; }
+int BatchedEnv::progress(int env_id) const { return slots_.at(env_id)->progress; }
+
+EnvView BatchedEnv::View(int i) const {
+  const Slot& s = *slots_[i];
+  EnvView v;
+  v.env_id = i;
+  v.humanoid = humanoid_.get();
+  v.data = s.data.get();
+  v.pose = &s.pose;
+  v.bodies = &s.bodies;
+  v.progress = s.progress;
+  v.control_dt = control_dt();
+  return v;
+}
+
+void BatchedEnv::Reset() {
+#pragma omp parallel for schedule(static) num_threads(threads_)
+  for (int i = 0; i < config_.num_envs; ++i) ResetSlot(i);
+}
+
+void BatchedEnv::ResetEnv(int env_id) {
+  SIMS_CHECK(env_id >= 0 && env_id < config_.num_envs);
+  ResetSlot(env_id);
+}
+
+void BatchedEnv::ResetSlot(int i) {
+  Slot& s = *slots_[i];
+  const mjModel* m = humanoid_->model();
+  mjData* d = s.data.get();
+  InitialState init;
+  // Default state: AMP default pose with random heading and position.
+  if (config_.random_heading) {
+    const double yaw = s.rng.Uniform(-M_PI, M_PI);
+    init.pose.root_rot = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+  }
+  if (config_.spawn_radius > 0) {
+    const double r = config_.spawn_radius * std::sqrt(s.rng.Uniform());
+    const double a = s.rng.Uniform(0, 2 * M_PI);
+    init.pose.root_pos.x() = r * std::cos(a);
+    init.pose.root_pos.y() = r * std::sin(a);
+  }
+  if (task_) task_->SampleInitialState(i, s.rng, &init);
+
+  mj_resetData(m, d);
+  s.progress = 0;
+  s.grace = init.termination_grace_steps;
+  const int hist = config_.amp_history;
+  // AMP history of a reference init: poses at t − k·dt evaluated with this env's data as scratch.
+  const bool has_history = static_cast<int>(init.history.size()) >= hist - 1 && hist > 1;
+  if (has_history) {
+    for (int k = 1; k < hist; ++k) {
+      ForwardKinematics(*humanoid_, init.history[k - 1], d, &s.bodies);
+      ComputeAmpObservation(init.history[k - 1], s.bodies, obs_options_,
+                            s.amp_hist.data() + static_cast<size_t>(k) * kAmpObsStepDim);
+    }
+  }
+  WritePose(*humanoid_, init.pose, d);
+  // Hold the initial joint angles as PD targets until the first action arrives.
+  for (int j = 0; j < kNumDofs; ++j) d->ctrl[humanoid_->actuator_id(j)] = init.pose.dof_pos[j];
+  mj_forward(m, d);
+  s.warnings_seen = 0;
+  for (int w : kWatchedWarnings) s.warnings_seen += d->warning[w].number;
+  if (task_) {
+    ReadPose(*humanoid_, d, &s.pose);
+    ReadBodyStates(*humanoid_, d, &s.bodies);
+    task_->OnReset(View(i), s.rng);
+  }
+  RefreshObservation(i, !has_history);
+}
+
+void BatchedEnv::RefreshObservation(int i, bool fill_history) {
+  Slot& s = *slots_[i];
+  const mjData* d = s.data.get();
+  ReadPose(*humanoid_, d, &s.pose);
+  ReadBodyStates(*humanoid_, d, &s.bodies);
+  float* row = obs_.data() + static_cast<size_t>(i) * obs_dim_;
+  ComputeSelfObservation(s.bodies, obs_options_, row);
+  if (task_) task_->Observe(View(i), row + kSelfObsDim);
+  ComputeAmpObservation(s.pose, s.bodies, obs_options_, s.amp_hist.data());
+  if (fill_history) {
+    // Default/fall resets have no past: repeat the current observation (ASE).
+    for (int k = 1; k < config_.amp_history; ++k)
+      std::memcpy(s.amp_hist.data() + static_cast<size_t>(k) * kAmpObsStepDim, s.amp_hist.data(),
+                  sizeof(float) * kAmpObsStepDim);
+  }
+}
+
+bool BatchedEnv::Unstable(int i) const {
+  const Slot& s = *slots_[i];
+  const mjModel* m = humanoid_->model();
+  const mjData* d = s.data.get();
+  int warnings = 0;
+  for (int w : kWatchedWarnings) warnings += d->warning[w].number;
+  if (warnings != s.warnings_seen) return true;  // MuJoCo already caught a bad number
+  for (int k = 0; k < m->nq; ++k)
+    if (!std::isfinite(d->qpos[k])) return true;
+  for (int k = 0; k < m->nv; ++k)
+    if (!std::isfinite(d->qvel[k]) || std::abs(d->qvel[k]) > config_.max_velocity) return true;
+  return false;
+}
+
+bool BatchedEnv::Fallen(int i) const {
+  const Slot& s = *slots_[i];
+  const mjData* d = s.data.get();
+  // ASE: some non-contact body touches something outside the humanoid AND some non-contact
+  // body is below the termination height.
+  bool touching = false;
+  for (int c = 0; c < d->ncon && !touching; ++c) {
+    const int b1 = humanoid_->geom_body(d->contact[c].geom1);
+    const int b2 = humanoid_->geom_body(d->contact[c].geom2);
+    if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
+    const int b = b1 >= 0 ? b1 : b2;
+    if (!(contact_mask_ & (1u << b))) touching = true;
+  }
+  if (!touching) return false;
+  for (int b = 0; b < kNumBodies; ++b) {
+    if (contact_mask_ & (1u << b)) continue;
+    const double h = b == kHead
+                         ? std::max(config_.head_termination_height, config_.termination_height)
+                         : config_.termination_height;
+    if (s.bodies.pos[b].z() < h) return true;
+  }
+  return false;
+}
+
+void BatchedEnv::StepEnv(int i, const float* action) {
+  Slot& s = *slots_[i];
+  const mjModel* m = humanoid_->model();
+  mjData* d = s.data.get();
+  humanoid_->ActionToTargets(action, s.targets);
+  for (int j = 0; j < kNumDofs; ++j) d->ctrl[humanoid_->actuator_id(j)] = s.targets[j];
+  // The position/velocity stage of the state we start from is already computed (by mj_forward
+  // after a reset or mj_step1 at the end of the last control step), so finish that step with
+  // mj_step2, then run full steps, and end with mj_step1 so observations see the final state.
+  mj_step2(m, d);
+  for (int k = 1; k < config_.substeps; ++k) mj_step(m, d);
+  mj_step1(m, d);
+  s.progress += 1;
+
+  uint8_t reason = kNone;
+  TaskStepResult tr;
+  if (Unstable(i)) {
+    reason = kUnstable;
+  } else {
+    ReadPose(*humanoid_, d, &s.pose);
+    ReadBodyStates(*humanoid_, d, &s.bodies);
+    if (task_) tr = task_->Step(View(i));
+    if (s.grace > 0) --s.grace;
+    if (config_.early_termination && s.grace == 0 && s.progress > 1 && Fallen(i))
+      reason = kFall;
+    else if (tr.terminate)
+      reason = kTaskTerminate;
+    else if (tr.truncate)
+      reason = kTaskTruncate;
+    else if (s.progress >= config_.episode_length - 1)
+      reason = kTimeout;
+  }
+
+  rewards_[i] = reason == kUnstable ? 0.0f : tr.reward;
+  successes_[i] = tr.success ? 1 : 0;
+  float* row = obs_.data() + static_cast<size_t>(i) * obs_dim_;
+  float* amp_row = amp_obs_.data() + static_cast<size_t>(i) * amp_obs_dim();
+  if (reason != kUnstable) {
+    // Shift the AMP history one step back and compute slot 0 (the observation of now).
+    std::memmove(s.amp_hist.data() + kAmpObsStepDim, s.amp_hist.data(),
+                 sizeof(float) * kAmpObsStepDim * (config_.amp_history - 1));
+    ComputeAmpObservation(s.pose, s.bodies, obs_options_, s.amp_hist.data());
+    ComputeSelfObservation(s.bodies, obs_options_, row);
+    if (task_) task_->Observe(View(i), row + kSelfObsDim);
+  }
+  // A blown-up transition keeps the previous (finite) AMP history so no NaN reaches a learner.
+  std::memcpy(amp_row, s.amp_hist.data(), sizeof(float) * amp_obs_dim());
+
+  end_reason_[i] = reason;
+  dones_[i] = reason != kNone;
+  terminated_[i] = reason == kFall || reason == kTaskTerminate || reason == kUnstable;
+  if (reason != kNone) {
+    std::memcpy(terminal_obs_.data() + static_cast<size_t>(i) * obs_dim_, row,
+                sizeof(float) * obs_dim_);
+    ResetSlot(i);
+  }
+}
+
+void BatchedEnv::Step(const float* actions) {
+  const int n = config_.num_envs;
+#pragma omp parallel for schedule(static) num_threads(threads_)
+  for (int i = 0; i < n; ++i) StepEnv(i, actions + static_cast<size_t>(i) * kNumDofs);
+  stats_.steps += n;
+  for (int i = 0; i < n; ++i) {
+    switch (end_reason_[i]) {
+      case kFall:
+        ++stats_.falls;
+        break;
+      case kTimeout:
+        ++stats_.timeouts;
+        break;
+      case kTaskTerminate:
+      case kTaskTruncate:
+        ++stats_.task_ends;
+        break;
+      case kUnstable:
+        ++stats_.instabilities;
+        break;
+      default:
+        continue;
+    }
+    ++stats_.episodes;
+  }
+}
+
+void BatchedEnv::SetState(int env_id, const HumanoidPose& pose) {
+  Slot& s = *slots_.at(env_id);
+  WritePose(*humanoid_, pose, s.data.get());
+  mj_forward(humanoid_->model(), s.data.get());
+  RefreshObservation(env_id, false);
+}
+
+}  // namespace sims::sim
