@@ -1,0 +1,24 @@
+// bench_env: batched environment step vs raw mj_step on the same model, 1..N threads.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "sims/core/log.h"
+#include "sims/sim/bench.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Benchmark the batched env against a raw mj_step loop (prints JSON)"};
+  sims::sim::EnvBenchOptions o;
+  bool json = false;
+  app.add_flag("--json", json, "print only the JSON result");
+  app.add_option("--envs", o.num_envs, "environments")->check(CLI::PositiveNumber);
+  app.add_option("--steps", o.control_steps, "control steps per measurement")->check(CLI::PositiveNumber);
+  app.add_option("--repeats", o.repeats, "best-of repeats")->check(CLI::PositiveNumber);
+  app.add_option("--max-threads", o.max_threads, "largest thread count (0 = hardware)");
+  CLI11_PARSE(app, argc, argv);
+  sims::InitLogging(json ? "warn" : "");
+  const auto result = sims::sim::RunEnvBenchmark(o);
+  if (!json) spdlog::info("env/raw ratio at 1 thread: {:.3f}", result["ratio"].get<double>());
+  std::cout << result.dump(json ? -1 : 2) << std::endl;
+  return 0;
+}
