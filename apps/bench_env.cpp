@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   bool json = false;
   app.add_flag("--json", json, "print only the JSON result");
   app.add_option("--envs", o.num_envs, "environments")->check(CLI::PositiveNumber);
-  app.add_option("--steps", o.control_steps, "control steps per measurement")->check(CLI::PositiveNumber);
+  app.add_option("--steps", o.control_steps, "control steps per measurement")
+      ->check(CLI::PositiveNumber);
   app.add_option("--repeats", o.repeats, "best-of repeats")->check(CLI::PositiveNumber);
   app.add_option("--max-threads", o.max_threads, "largest thread count (0 = hardware)");
   CLI11_PARSE(app, argc, argv);

@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_path, "environment config (JSON)");
   app.add_option("--out", out, "output directory");
   app.add_option("--steps", steps, "control steps (30 Hz)")->check(CLI::PositiveNumber);
-  app.add_option("--noise", noise, "std of the random action perturbation")->check(CLI::NonNegativeNumber);
+  app.add_option("--noise", noise, "std of the random action perturbation")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", seed, "random seed");
   app.add_option("--threads", threads, "threads (0 = all hardware threads)");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error");

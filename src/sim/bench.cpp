@@ -56,14 +56,14 @@ double RawStepsPerSecond(const Humanoid& h, const EnvBenchOptions& o, int thread
         for (int k = 0; k < substeps; ++k) mj_step(m, d);
       }
     }
-    best = std::max(best, static_cast<double>(o.control_steps) * o.num_envs * substeps / Seconds(t0));
+    best =
+        std::max(best, static_cast<double>(o.control_steps) * o.num_envs * substeps / Seconds(t0));
   }
   return best;
 }
 
-double EnvPhysicsStepsPerSecond(const std::shared_ptr<const Humanoid>& h,
-                                const EnvBenchOptions& o, int threads,
-                                const std::vector<float>& actions) {
+double EnvPhysicsStepsPerSecond(const std::shared_ptr<const Humanoid>& h, const EnvBenchOptions& o,
+                                int threads, const std::vector<float>& actions) {
   EnvConfig c;
   c.num_envs = o.num_envs;
   c.threads = threads;
@@ -74,8 +74,8 @@ double EnvPhysicsStepsPerSecond(const std::shared_ptr<const Humanoid>& h,
     const auto t0 = Clock::now();
     for (int t = 0; t < o.control_steps; ++t)
       env.Step(actions.data() + static_cast<size_t>(t) * o.num_envs * kNumDofs);
-    best = std::max(best, static_cast<double>(o.control_steps) * o.num_envs * c.substeps /
-                              Seconds(t0));
+    best = std::max(best,
+                    static_cast<double>(o.control_steps) * o.num_envs * c.substeps / Seconds(t0));
   }
   return best;
 }
@@ -102,15 +102,10 @@ nlohmann::json RunEnvBenchmark(const EnvBenchOptions& o) {
       threads = max_threads / 2;  // make sure max_threads itself is measured
     }
   }
-  return {{"raw_steps_per_s", raw1},
-          {"env_physics_steps_per_s", env1},
-          {"ratio", env1 / raw1},
-          {"threads", max_threads},
-          {"scaling", envn / env1},
-          {"raw_scaling", rawn / raw1},
-          {"num_envs", o.num_envs},
-          {"control_steps", o.control_steps},
-          {"per_threads", per_threads}};
+  return {
+      {"raw_steps_per_s", raw1}, {"env_physics_steps_per_s", env1},  {"ratio", env1 / raw1},
+      {"threads", max_threads},  {"scaling", envn / env1},           {"raw_scaling", rawn / raw1},
+      {"num_envs", o.num_envs},  {"control_steps", o.control_steps}, {"per_threads", per_threads}};
 }
 
 }  // namespace sims::sim

@@ -13,6 +13,13 @@ namespace sims::sim {
 
 uint32_t TaskHook::contact_body_mask() const { return FeetContactMask(); }
 
+std::vector<ObsSegment> TaskHook::obs_segments() const {
+  ObsSegment s;
+  s.name = "task";
+  s.size = obs_dim();
+  return {s};
+}
+
 uint32_t FeetContactMask() { return (1u << kRightFoot) | (1u << kLeftFoot); }
 
 void EnvConfig::Validate() const {
@@ -31,6 +38,16 @@ enum EndReason : uint8_t { kNone = 0, kFall, kTimeout, kTaskTerminate, kTaskTrun
 constexpr int kWatchedWarnings[] = {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC, mjWARN_BADCTRL};
 }  // namespace
 
+// MuJoCo's kinematics normalises the free-joint quaternion in qpos in place and then derives
+// xquat by normalising again; mju_normalize4 can alternate between two neighbouring values, so
+// the state after mj_step1 depends on the quaternion *before* the pass, not the one left in
+// qpos. Each env keeps that pre-pass quaternion so a snapshot can replay the pass exactly.
+namespace {
+void RememberRootQuaternion(const Humanoid& h, const mjData* d, double* out4) {
+  std::memcpy(out4, d->qpos + h.root_qpos_adr() + 3, 4 * sizeof(double));
+}
+}  // namespace
+
 struct BatchedEnv::Slot {
   MjDataPtr data;
   Rng rng;
@@ -41,6 +58,7 @@ struct BatchedEnv::Slot {
   int grace = 0;
   int warnings_seen = 0;
   double targets[kNumDofs];
+  double root_quat_before_pass[4];  // see RememberRootQuaternion
 };
 
 BatchedEnv::BatchedEnv(std::shared_ptr<const Humanoid> humanoid, const EnvConfig& config,
@@ -140,6 +158,7 @@ void BatchedEnv::ResetSlot(int i) {
   WritePose(*humanoid_, init.pose, d);
   // Hold the initial joint angles as PD targets until the first action arrives.
   for (int j = 0; j < kNumDofs; ++j) d->ctrl[humanoid_->actuator_id(j)] = init.pose.dof_pos[j];
+  RememberRootQuaternion(*humanoid_, d, s.root_quat_before_pass);
   mj_forward(m, d);
   s.warnings_seen = 0;
   for (int w : kWatchedWarnings) s.warnings_seen += d->warning[w].number;
@@ -217,6 +236,7 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   // mj_step2, then run full steps, and end with mj_step1 so observations see the final state.
   mj_step2(m, d);
   for (int k = 1; k < config_.substeps; ++k) mj_step(m, d);
+  RememberRootQuaternion(*humanoid_, d, s.root_quat_before_pass);
   mj_step1(m, d);
   s.progress += 1;
 
@@ -291,9 +311,138 @@ void BatchedEnv::Step(const float* actions) {
   }
 }
 
+namespace {
+class ByteWriter {
+ public:
+  template <typename T>
+  void Put(const T* p, size_t n) {
+    const char* c = reinterpret_cast<const char*>(p);
+    out_.append(c, c + sizeof(T) * n);
+  }
+  template <typename T>
+  void Put(const T& v) {
+    Put(&v, 1);
+  }
+  std::string& str() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class ByteReader {
+ public:
+  explicit ByteReader(const std::string& in) : in_(in) {}
+  template <typename T>
+  void Get(T* p, size_t n) {
+    const size_t bytes = sizeof(T) * n;
+    if (pos_ + bytes > in_.size())
+      ThrowInputError("environment state", "", "a snapshot of this environment", "truncated data");
+    std::memcpy(p, in_.data() + pos_, bytes);
+    pos_ += bytes;
+  }
+  template <typename T>
+  T Get() {
+    T v;
+    Get(&v, 1);
+    return v;
+  }
+  bool done() const { return pos_ == in_.size(); }
+
+ private:
+  const std::string& in_;
+  size_t pos_ = 0;
+};
+constexpr uint32_t kStateMagic = 0x53494D53;  // "SIMS"
+}  // namespace
+
+std::string BatchedEnv::SaveState() const {
+  const mjModel* m = humanoid_->model();
+  ByteWriter w;
+  w.Put(kStateMagic);
+  w.Put(config_.num_envs);
+  w.Put(m->nq);
+  w.Put(m->nv);
+  w.Put(m->nu);
+  w.Put(config_.amp_history);
+  w.Put(stats_);
+  for (int i = 0; i < config_.num_envs; ++i) {
+    const Slot& s = *slots_[i];
+    const mjData* d = s.data.get();
+    const auto rng = s.rng.state();
+    w.Put(rng.data(), rng.size());
+    w.Put(s.progress);
+    w.Put(s.grace);
+    w.Put(s.amp_hist.data(), s.amp_hist.size());
+    w.Put(d->time);
+    w.Put(d->qpos, m->nq);
+    w.Put(s.root_quat_before_pass, 4);
+    w.Put(d->qvel, m->nv);
+    w.Put(d->act, m->na);
+    w.Put(d->ctrl, m->nu);
+    w.Put(d->qacc_warmstart, m->nv);
+    const std::vector<double> task_state = task_ ? task_->SaveEnvState(i) : std::vector<double>{};
+    w.Put(task_state.size());
+    w.Put(task_state.data(), task_state.size());
+  }
+  return std::move(w.str());
+}
+
+void BatchedEnv::LoadState(const std::string& state) {
+  const mjModel* m = humanoid_->model();
+  ByteReader r(state);
+  const auto expect = [&](auto value, const char* field) {
+    if (r.Get<decltype(value)>() != value)
+      ThrowInputError("environment state", field, "the same value as this environment",
+                      "a different one (config or model changed since the snapshot)");
+  };
+  expect(kStateMagic, "magic");
+  expect(config_.num_envs, "num_envs");
+  expect(m->nq, "nq");
+  expect(m->nv, "nv");
+  expect(m->nu, "nu");
+  expect(config_.amp_history, "amp_history");
+  stats_ = r.Get<EnvStats>();
+  for (int i = 0; i < config_.num_envs; ++i) {
+    Slot& s = *slots_[i];
+    mjData* d = s.data.get();
+    std::array<uint64_t, 4> rng;
+    r.Get(rng.data(), rng.size());
+    s.rng.set_state(rng);
+    s.progress = r.Get<int>();
+    s.grace = r.Get<int>();
+    r.Get(s.amp_hist.data(), s.amp_hist.size());
+    mj_resetData(m, d);
+    d->time = r.Get<double>();
+    r.Get(d->qpos, m->nq);
+    r.Get(s.root_quat_before_pass, 4);
+    std::memcpy(d->qpos + humanoid_->root_qpos_adr() + 3, s.root_quat_before_pass,
+                4 * sizeof(double));
+    r.Get(d->qvel, m->nv);
+    r.Get(d->act, m->na);
+    r.Get(d->ctrl, m->nu);
+    r.Get(d->qacc_warmstart, m->nv);
+    std::vector<double> task_state(r.Get<size_t>());
+    r.Get(task_state.data(), task_state.size());
+    if (task_) task_->LoadEnvState(i, task_state);
+    // The env always rests after mj_step1 (or mj_forward); replaying that pass from the
+    // pre-pass quaternion reproduces the saved data exactly.
+    mj_step1(m, d);
+    s.warnings_seen = 0;
+    for (int wi : kWatchedWarnings) s.warnings_seen += d->warning[wi].number;
+    ReadPose(*humanoid_, d, &s.pose);
+    ReadBodyStates(*humanoid_, d, &s.bodies);
+    float* row = obs_.data() + static_cast<size_t>(i) * obs_dim_;
+    ComputeSelfObservation(s.bodies, obs_options_, row);
+    if (task_) task_->Observe(View(i), row + kSelfObsDim);
+  }
+  if (!r.done())
+    ThrowInputError("environment state", "", "a snapshot of this environment", "trailing data");
+}
+
 void BatchedEnv::SetState(int env_id, const HumanoidPose& pose) {
   Slot& s = *slots_.at(env_id);
   WritePose(*humanoid_, pose, s.data.get());
+  RememberRootQuaternion(*humanoid_, s.data.get(), s.root_quat_before_pass);
   mj_forward(humanoid_->model(), s.data.get());
   RefreshObservation(env_id, false);
 }

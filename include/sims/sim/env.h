@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "sims/core/config.h"
@@ -123,6 +124,10 @@ class BatchedEnv {
   int progress(int env_id) const;
   /// Overwrites an env's state (keeps its episode running) and refreshes its observations.
   void SetState(int env_id, const HumanoidPose& pose);
+  /// Serialises every env's simulation, RNG, history and task state (binary string).
+  std::string SaveState() const;
+  /// Restores SaveState() output and recomputes observations; throws sims::Error on mismatch.
+  void LoadState(const std::string& state);
   /// The env's task hook (may be null).
   TaskHook* task() const { return task_.get(); }
   /// The resolved config.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "sims/core/rng.h"
@@ -38,12 +39,26 @@ struct TaskStepResult {
   bool truncate = false;   ///< End the episode without failure (bootstrap), e.g. success held.
 };
 
+/// A named slice of the task observation, so networks can route it (e.g. a heightmap to a
+/// convolutional or MLP encoder, the style embedding z past the normaliser).
+struct ObsSegment {
+  /// How a network should treat the slice.
+  enum class Kind { kVector, kHeightmap, kStyle };
+  std::string name;           ///< e.g. "contact_goal", "heightmap", "z".
+  Kind kind = Kind::kVector;  ///< Routing.
+  int offset = 0;             ///< Offset within the task observation.
+  int size = 0;               ///< Number of floats.
+  int rows = 0, cols = 0;     ///< Heightmap grid shape (rows·cols = size).
+};
+
 /// A skill plugged into the environment.
 class TaskHook {
  public:
   virtual ~TaskHook() = default;
   /// Task observation size appended after the 223 self-observation values.
   virtual int obs_dim() const = 0;
+  /// Layout of the task observation (default: one vector segment).
+  virtual std::vector<ObsSegment> obs_segments() const;
   /// Chooses the initial state (may leave the env's default); runs before physics state is set.
   virtual void SampleInitialState(int env_id, Rng& rng, InitialState* init) = 0;
   /// Samples goals/objects once the initial state is in place.
@@ -54,6 +69,21 @@ class TaskHook {
   virtual void Observe(const EnvView& view, float* out) const = 0;
   /// Bitmask of AMP bodies allowed to touch the ground/scene without counting as a fall.
   virtual uint32_t contact_body_mask() const;
+  /// Style (clip) id of the env's episode for conditional AMP, or −1.
+  virtual int style_id(int env_id) const {
+    (void)env_id;
+    return -1;
+  }
+  /// Per-env task state (goals, counters) so training can resume bit-exactly.
+  virtual std::vector<double> SaveEnvState(int env_id) const {
+    (void)env_id;
+    return {};
+  }
+  /// Restores SaveEnvState() output.
+  virtual void LoadEnvState(int env_id, const std::vector<double>& state) {
+    (void)env_id;
+    (void)state;
+  }
 };
 
 /// Feet only (ASE's default contact bodies).
