@@ -37,11 +37,13 @@ TEST(ScriptDatabaseTest, CaptionsExpressTheirStyles) {
       const Keyframe& k = s.keyframes[i];
       EXPECT_TRUE(vocab.IsValidStyle(k.skill, k.style)) << s.id << " #" << i;
       // Every sit, lie and reach caption names its posture / hand and height explicitly.
-      if (k.skill == Skill::kSit || k.skill == Skill::kLie || k.skill == Skill::kReach)
+      if (IsInteraction(k.skill)) {
         EXPECT_TRUE(vocab.ResolveStyle(k.skill, k.caption, "neutral").from_caption)
             << s.id << " #" << i << ": '" << k.caption << "' -> " << k.style;
-      if (IsInteraction(k.skill))
+      }
+      if (IsInteraction(k.skill)) {
         EXPECT_TRUE(captions.insert(k.caption).second) << "caption repeated: " << k.caption;
+      }
       if (k.skill == Skill::kWalk) walk_styles.insert(k.style);
       if (k.skill == Skill::kSit) sit_styles.insert(k.style);
       if (k.skill == Skill::kLie) lie_styles.insert(k.style);
