@@ -34,6 +34,8 @@ class WordNetLexicon {
 
   /// True if `word` is a kept lemma.
   bool IsLemma(const std::string& word) const { return lemmas_.count(word) > 0; }
+  /// True if `word` is listed as an irregular form (e.g. "sat").
+  bool IsIrregularForm(const std::string& word) const { return exceptions_.count(word) > 0; }
   /// Base forms of `word` other than itself (irregular forms first, then suffix rules).
   std::vector<std::string> BaseForms(const std::string& word) const;
   /// Synonyms of a lemma (empty if none or unknown).
