@@ -12,12 +12,12 @@ namespace sims::learning {
 
 /// Network sizes (GPU: [1024, 1024, 512]; ≈260 MFLOP/sample, far too slow on a CPU).
 struct NetworkConfig {
-  std::vector<int> actor_hidden{256, 256};       ///< Actor MLP hidden sizes.
-  std::vector<int> critic_hidden{256, 256};      ///< Critic MLP hidden sizes.
-  std::vector<int> disc_hidden{256, 128};        ///< Discriminator MLP hidden sizes.
-  std::vector<int> heightmap_hidden{128, 64};    ///< Heightmap encoder MLP (output = last).
-  std::string activation = "relu";               ///< relu | elu | tanh.
-  double action_log_std = -2.9;                  ///< Fixed Gaussian log σ.
+  std::vector<int> actor_hidden{256, 256};     ///< Actor MLP hidden sizes.
+  std::vector<int> critic_hidden{256, 256};    ///< Critic MLP hidden sizes.
+  std::vector<int> disc_hidden{256, 128};      ///< Discriminator MLP hidden sizes.
+  std::vector<int> heightmap_hidden{128, 64};  ///< Heightmap encoder MLP (output = last).
+  std::string activation = "relu";             ///< relu | elu | tanh.
+  double action_log_std = -2.9;                ///< Fixed Gaussian log σ.
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -35,20 +35,20 @@ struct NetworkConfig {
 
 /// PPO settings.
 struct PpoConfig {
-  double gamma = 0.99;           ///< Discount.
-  double lambda = 0.95;          ///< GAE λ.
-  double clip = 0.2;             ///< Ratio clip ε.
-  int horizon = 32;              ///< Steps per env per iteration.
-  int mini_epochs = 6;           ///< Passes over each batch.
-  int minibatch_size = 1024;     ///< Samples per gradient step (GPU: 16384).
-  double learning_rate = 1e-4;   ///< Adam lr (GPU: 2e-5 with 131k-sample batches).
-  double critic_coef = 5.0;      ///< Value loss weight.
-  double bounds_coef = 10.0;     ///< Action-mean bounds loss weight.
-  double entropy_coef = 0.0;     ///< Entropy bonus (σ is fixed, so 0).
-  double grad_norm = 1.0;        ///< Gradient-norm clip (0 = off).
+  double gamma = 0.99;              ///< Discount.
+  double lambda = 0.95;             ///< GAE λ.
+  double clip = 0.2;                ///< Ratio clip ε.
+  int horizon = 32;                 ///< Steps per env per iteration.
+  int mini_epochs = 6;              ///< Passes over each batch.
+  int minibatch_size = 1024;        ///< Samples per gradient step (GPU: 16384).
+  double learning_rate = 1e-4;      ///< Adam lr (GPU: 2e-5 with 131k-sample batches).
+  double critic_coef = 5.0;         ///< Value loss weight.
+  double bounds_coef = 10.0;        ///< Action-mean bounds loss weight.
+  double entropy_coef = 0.0;        ///< Entropy bonus (σ is fixed, so 0).
+  double grad_norm = 1.0;           ///< Gradient-norm clip (0 = off).
   bool normalize_advantage = true;  ///< (A − μ)/(σ + 1e-8) batch-wide.
-  bool normalize_value = true;   ///< Critic predicts normalised returns.
-  double obs_clip = 5.0;         ///< Normalised observations are clamped to ±obs_clip.
+  bool normalize_value = true;      ///< Critic predicts normalised returns.
+  double obs_clip = 5.0;            ///< Normalised observations are clamped to ±obs_clip.
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -74,21 +74,22 @@ struct PpoConfig {
 
 /// Adversarial motion prior settings.
 struct AmpConfig {
-  bool enabled = true;              ///< Train a discriminator and use the style reward.
-  bool conditional = false;         ///< SIMS: D(s, s', z) with the clip's embedding z.
-  std::string loss = "bce";         ///< bce | lsgan.
-  double task_weight = 0.5;         ///< w_task.
-  double style_weight = 0.5;        ///< w_style.
-  double reward_scale = 2.0;        ///< r_style = −log(max(1 − D, 1e-4)) · scale.
-  double disc_coef = 5.0;           ///< Discriminator loss weight in the joint loss.
-  double grad_penalty = 5.0;        ///< Weight of mean ‖∇ₓ D(demo)‖².
-  double logit_reg = 0.01;          ///< Weight of ‖w_logit‖².
-  double weight_decay = 1e-4;       ///< Weight of Σ‖W‖² (weights only).
-  int replay_size = 32768;          ///< Replay buffer capacity (GPU: 200k).
-  double replay_keep_prob = 0.01;   ///< Insert probability once the buffer is full.
-  int demo_pool_size = 32768;       ///< Demo windows precomputed from the motion library.
-  int batch_size = 512;             ///< Demo samples per discriminator step (half replay negatives).
-  double mismatch_fraction = 0.25;  ///< Conditional: demo windows paired with a wrong z as negatives.
+  bool enabled = true;             ///< Train a discriminator and use the style reward.
+  bool conditional = false;        ///< SIMS: D(s, s', z) with the clip's embedding z.
+  std::string loss = "bce";        ///< bce | lsgan.
+  double task_weight = 0.5;        ///< w_task.
+  double style_weight = 0.5;       ///< w_style.
+  double reward_scale = 2.0;       ///< r_style = −log(max(1 − D, 1e-4)) · scale.
+  double disc_coef = 5.0;          ///< Discriminator loss weight in the joint loss.
+  double grad_penalty = 5.0;       ///< Weight of mean ‖∇ₓ D(demo)‖².
+  double logit_reg = 0.01;         ///< Weight of ‖w_logit‖².
+  double weight_decay = 1e-4;      ///< Weight of Σ‖W‖² (weights only).
+  int replay_size = 32768;         ///< Replay buffer capacity (GPU: 200k).
+  double replay_keep_prob = 0.01;  ///< Insert probability once the buffer is full.
+  int demo_pool_size = 32768;      ///< Demo windows precomputed from the motion library.
+  int batch_size = 512;            ///< Demo samples per discriminator step (half replay negatives).
+  double mismatch_fraction =
+      0.25;  ///< Conditional: demo windows paired with a wrong z as negatives.
 
   /// Lists the fields for JSON binding.
   template <class A>

@@ -1,0 +1,118 @@
+// Networks of the learner (libtorch): running normalisers, the observation encoder that routes
+// heightmaps through their own MLP and keeps the style embedding z un-normalised, the Gaussian
+// actor with fixed log σ, the critic and the (conditional) discriminator.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <torch/torch.h>
+
+#include "sims/learning/config.h"
+#include "sims/sim/task_hook.h"
+
+namespace sims::learning {
+
+/// rl_games RunningMeanStd: per-feature mean/variance with eps 1e-5, output clamped.
+class RunningMeanStdImpl : public torch::nn::Module {
+ public:
+  /// `size` features; normalised values are clamped to ±clip.
+  RunningMeanStdImpl(int64_t size, double clip = 5.0);
+  /// Folds a batch [B, size] into the statistics (parallel Welford merge, float64).
+  void Update(const torch::Tensor& x);
+  /// (x − mean) / sqrt(var + eps), clamped.
+  torch::Tensor Normalize(const torch::Tensor& x) const;
+  /// x · sqrt(var + eps) + mean (for value de-normalisation).
+  torch::Tensor Denormalize(const torch::Tensor& x) const;
+  /// Number of samples folded in so far.
+  double count() const { return count_.item<double>(); }
+
+ private:
+  torch::Tensor mean_, var_, count_;
+  double clip_;
+};
+TORCH_MODULE(RunningMeanStd);
+
+/// A plain MLP with a configurable activation; the last layer is linear.
+class MlpImpl : public torch::nn::Module {
+ public:
+  /// in → hidden... → out (out ≤ 0 means: end after the last hidden layer, activated).
+  MlpImpl(int64_t in, const std::vector<int>& hidden, int64_t out, const std::string& activation);
+  /// Forward pass.
+  torch::Tensor forward(torch::Tensor x);
+  /// Output width.
+  int64_t out_dim() const { return out_dim_; }
+  /// The linear layers in order (for weight decay and logit regularisation).
+  const std::vector<torch::nn::Linear>& layers() const { return layers_; }
+
+ private:
+  std::vector<torch::nn::Linear> layers_;
+  std::string activation_;
+  bool final_linear_;
+  int64_t out_dim_;
+};
+TORCH_MODULE(Mlp);
+
+/// Routes a (normalised) observation: vector segments pass through, heightmaps go through
+/// their own MLP, style segments (z) are taken from the raw observation.
+class ObsEncoderImpl : public torch::nn::Module {
+ public:
+  /// `segments` cover the whole observation (self observation first).
+  ObsEncoderImpl(const std::vector<sim::ObsSegment>& segments, const NetworkConfig& config);
+  /// normalised, raw: [B, obs_dim] → features [B, out_dim()].
+  torch::Tensor forward(const torch::Tensor& normalised, const torch::Tensor& raw);
+  /// Feature width.
+  int64_t out_dim() const { return out_dim_; }
+
+ private:
+  std::vector<sim::ObsSegment> segments_;
+  std::vector<Mlp> heightmap_encoders_;
+  int64_t out_dim_ = 0;
+};
+TORCH_MODULE(ObsEncoder);
+
+/// Separate actor and critic (ASE), each with its own encoder.
+class ActorCriticImpl : public torch::nn::Module {
+ public:
+  /// Builds both networks for an observation layout and action width.
+  ActorCriticImpl(const std::vector<sim::ObsSegment>& segments, int64_t action_dim,
+                  const NetworkConfig& config);
+  /// Action mean μ [B, A] from normalised + raw observations.
+  torch::Tensor Mean(const torch::Tensor& normalised, const torch::Tensor& raw);
+  /// Value [B] (in the critic's normalised units when value normalisation is on).
+  torch::Tensor Value(const torch::Tensor& normalised, const torch::Tensor& raw);
+  /// Fixed log σ.
+  double log_std() const { return log_std_; }
+
+ private:
+  ObsEncoder actor_encoder_{nullptr}, critic_encoder_{nullptr};
+  Mlp actor_{nullptr}, critic_{nullptr};
+  double log_std_;
+};
+TORCH_MODULE(ActorCritic);
+
+/// AMP discriminator D(s_window[, z]) → logit; conditional when style_dim > 0.
+class DiscriminatorImpl : public torch::nn::Module {
+ public:
+  /// amp_dim input (normalised AMP window) plus style_dim (0 = unconditional).
+  DiscriminatorImpl(int64_t amp_dim, int64_t style_dim, const NetworkConfig& config);
+  /// Logits [B].
+  torch::Tensor forward(const torch::Tensor& amp, const torch::Tensor& style);
+  /// Squared norm of the logit layer's weights (logit regularisation).
+  torch::Tensor LogitWeightNorm() const;
+  /// Σ‖W‖² over all weight matrices (weight decay; biases excluded).
+  torch::Tensor WeightNorm() const;
+  /// Style width (0 = unconditional).
+  int64_t style_dim() const { return style_dim_; }
+
+ private:
+  Mlp trunk_{nullptr};
+  torch::nn::Linear logit_{nullptr};
+  int64_t style_dim_;
+};
+TORCH_MODULE(Discriminator);
+
+/// Total width of a segment list.
+int64_t ObsWidth(const std::vector<sim::ObsSegment>& segments);
+
+}  // namespace sims::learning

@@ -1,0 +1,98 @@
+// The PPO + (conditional) AMP learner over any VecEnv. libtorch stays behind the pimpl so apps
+// and other modules include this header without torch.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sims/learning/config.h"
+#include "sims/learning/vec_env.h"
+
+namespace sims::learning {
+
+/// What one iteration (rollout + update) measured.
+struct IterationStats {
+  int64_t iteration = 0;           ///< Iterations completed (after this one).
+  int64_t samples = 0;             ///< Environment transitions so far.
+  double task_reward = 0;          ///< Mean task reward per step.
+  double style_reward = 0;         ///< Mean style reward per step.
+  double total_reward = 0;         ///< Mean combined reward per step.
+  double episode_return = 0;       ///< Mean combined return of episodes ended this iteration.
+  double episode_length = 0;       ///< Mean length (steps) of those episodes.
+  int64_t episodes = 0;            ///< Episodes ended this iteration.
+  double success_rate = 0;         ///< Fraction of those episodes in which success held.
+  double fall_rate = 0;            ///< Fraction of those episodes that ended by failure.
+  double actor_loss = 0;           ///< Mean clipped surrogate loss.
+  double critic_loss = 0;          ///< Mean value loss.
+  double bounds_loss = 0;          ///< Mean bounds loss.
+  double disc_loss = 0;            ///< Mean discriminator classification loss.
+  double grad_penalty = 0;         ///< Mean gradient penalty.
+  double disc_acc_demo = 0;        ///< Discriminator accuracy on demo windows.
+  double disc_acc_agent = 0;       ///< Discriminator accuracy on policy/replay windows.
+  double clip_fraction = 0;        ///< Fraction of clipped ratios.
+  double env_samples_per_s = 0;    ///< Collection throughput (incl. policy inference).
+  double train_samples_per_s = 0;  ///< Update throughput (samples × epochs / s).
+  double update_gflop = 0;         ///< Estimated GFLOP spent in the update.
+  double update_seconds = 0;       ///< Time spent in the update.
+  double iteration_seconds = 0;    ///< Wall time of the iteration.
+};
+
+/// PPO + AMP trainer.
+class Trainer {
+ public:
+  /// `demo` may be null when AMP is disabled. Initialises networks from config.seed.
+  Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> demo,
+          const LearnerConfig& config);
+  ~Trainer();
+  Trainer(const Trainer&) = delete;
+  Trainer& operator=(const Trainer&) = delete;
+
+  /// Collects horizon × num_envs transitions and runs the PPO (+ discriminator) update.
+  IterationStats RunIteration();
+  /// Iterations completed.
+  int64_t iteration() const;
+  /// Writes a full checkpoint atomically: networks, optimiser, normalisers, RNG, replay
+  /// buffer, environment state and counters.
+  void SaveCheckpoint(const std::filesystem::path& path) const;
+  /// Restores SaveCheckpoint() output; throws sims::Error naming the file on mismatch.
+  void LoadCheckpoint(const std::filesystem::path& path);
+  /// Writes the small inference file (actor, critic, observation normaliser, layout).
+  void ExportPolicy(const std::filesystem::path& path) const;
+  /// All network parameters flattened (tests compare runs with it).
+  std::vector<float> FlatParameters() const;
+  /// Deterministic actions (the Gaussian mean) for observations [n, obs_dim].
+  void ActMean(const float* obs, int n, float* actions) const;
+  /// The resolved config.
+  const LearnerConfig& config() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Inference-only policy loaded from an ExportPolicy() file (what eval and the FSM run).
+class Policy {
+ public:
+  /// Loads the file; throws sims::Error naming it when missing or malformed.
+  explicit Policy(const std::filesystem::path& path);
+  ~Policy();
+  Policy(Policy&&) noexcept;
+  Policy& operator=(Policy&&) noexcept;
+  /// Observation width the policy expects.
+  int obs_dim() const;
+  /// Action width.
+  int action_dim() const;
+  /// Deterministic actions [n, action_dim] for observations [n, obs_dim].
+  void Act(const float* obs, int n, float* actions) const;
+  /// Metadata stored with the policy (skill name, config, layout).
+  const std::string& metadata_json() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sims::learning

@@ -1,0 +1,36 @@
+#include "sims/learning/sim_vec_env.h"
+
+namespace sims::learning {
+
+SimVecEnv::SimVecEnv(std::shared_ptr<sim::BatchedEnv> env) : env_(std::move(env)) {
+  styles_.assign(env_->num_envs(), -1);
+  RefreshStyles();
+}
+
+std::vector<sim::ObsSegment> SimVecEnv::obs_segments() const {
+  sim::ObsSegment self;
+  self.name = "self";
+  self.size = sim::kSelfObsDim;
+  std::vector<sim::ObsSegment> out{self};
+  if (env_->task()) {
+    for (auto s : env_->task()->obs_segments()) {
+      s.offset += sim::kSelfObsDim;
+      if (s.size > 0) out.push_back(s);
+    }
+  }
+  return out;
+}
+
+void SimVecEnv::Step(const float* actions) {
+  env_->Step(actions);
+  RefreshStyles();
+}
+
+const int* SimVecEnv::style_ids() const { return env_->task() ? styles_.data() : nullptr; }
+
+void SimVecEnv::RefreshStyles() {
+  if (!env_->task()) return;
+  for (int i = 0; i < env_->num_envs(); ++i) styles_[i] = env_->task()->style_id(i);
+}
+
+}  // namespace sims::learning

@@ -1,0 +1,625 @@
+#include "sims/learning/trainer.h"
+
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include <torch/torch.h>
+
+#include "sims/core/error.h"
+#include "sims/core/log.h"
+#include "sims/core/parallel.h"
+#include "sims/learning/amp.h"
+#include "sims/learning/networks.h"
+#include "sims/learning/ppo.h"
+
+namespace sims::learning {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Debian's libtorch starts with one intra-op thread; follow the project's Parallelism setting.
+void BindTorchThreads() {
+  static const bool once = [] {
+    AddThreadCountListener([](int n) { torch::set_num_threads(n); });
+    return true;
+  }();
+  (void)once;
+}
+
+torch::Tensor FromBuffer(const float* data, std::vector<int64_t> shape) {
+  return torch::from_blob(const_cast<float*>(data), shape, torch::kFloat32).clone();
+}
+
+torch::Tensor Randn(Rng& rng, int64_t rows, int64_t cols) {
+  auto t = torch::empty({rows, cols}, torch::kFloat32);
+  float* p = t.data_ptr<float>();
+  for (int64_t i = 0; i < rows * cols; ++i) p[i] = static_cast<float>(rng.Normal());
+  return t;
+}
+
+torch::Tensor Permutation(Rng& rng, int64_t n) {
+  std::vector<int64_t> idx(n);
+  std::iota(idx.begin(), idx.end(), 0);
+  for (int64_t i = n - 1; i > 0; --i) std::swap(idx[i], idx[rng.UniformInt(i + 1)]);
+  return torch::tensor(idx, torch::kInt64);
+}
+
+// Multiply-adds of the linear layers of a module, for the FLOP estimate of the update.
+double LinearMacs(torch::nn::Module& m) {
+  double macs = 0;
+  for (const auto& p : m.named_parameters())
+    if (p.key().size() >= 6 && p.key().compare(p.key().size() - 6, 6, "weight") == 0)
+      macs += static_cast<double>(p.value().numel());
+  return macs;
+}
+
+}  // namespace
+
+struct Trainer::Impl {
+  std::shared_ptr<VecEnv> env;
+  std::shared_ptr<const DemoSource> demo;
+  LearnerConfig cfg;
+  std::vector<sim::ObsSegment> segments;
+  int64_t n = 0, obs_dim = 0, act_dim = 0, amp_dim = 0, style_dim = 0;
+  bool use_amp = false;
+
+  ActorCritic ac{nullptr};
+  Discriminator disc{nullptr};
+  RunningMeanStd obs_norm{nullptr}, value_norm{nullptr}, amp_norm{nullptr};
+  std::unique_ptr<torch::optim::Adam> optim;
+  std::unique_ptr<ReplayBuffer> replay;
+  torch::Tensor demo_pool, demo_pool_styles, style_table;
+  Rng rng;
+  int64_t iteration = 0, samples = 0;
+  std::vector<double> ep_return, ep_len;
+  std::vector<uint8_t> ep_success;
+
+  std::vector<torch::Tensor> AllParameters() const {
+    auto p = ac->parameters();
+    if (use_amp) {
+      auto d = disc->parameters();
+      p.insert(p.end(), d.begin(), d.end());
+    }
+    return p;
+  }
+
+  torch::Tensor StyleOf(const torch::Tensor& ids) const {
+    if (style_dim == 0) return torch::Tensor();
+    return style_table.index_select(0, ids.clamp_min(0));
+  }
+
+  // Values in return units (de-normalised when the critic is normalised).
+  torch::Tensor Values(const torch::Tensor& obs) {
+    const auto v = ac->Value(obs_norm->Normalize(obs), obs);
+    return cfg.ppo.normalize_value ? value_norm->Denormalize(v.unsqueeze(-1)).squeeze(-1) : v;
+  }
+};
+
+Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> demo,
+                 const LearnerConfig& config)
+    : impl_(std::make_unique<Impl>()) {
+  BindTorchThreads();
+  auto& m = *impl_;
+  ValidateConfig(config, "learner config");
+  m.env = std::move(env);
+  m.demo = std::move(demo);
+  m.cfg = config;
+  m.segments = m.env->obs_segments();
+  m.n = m.env->num_envs();
+  m.obs_dim = m.env->obs_dim();
+  m.act_dim = m.env->action_dim();
+  m.amp_dim = m.env->amp_obs_dim();
+  SIMS_CHECK_MSG(ObsWidth(m.segments) == m.obs_dim, "observation segments must cover obs_dim");
+  m.use_amp = config.amp.enabled;
+  if (m.use_amp) {
+    if (!m.demo)
+      ThrowInputError("learner config", "amp.enabled", "demonstration data (a motion library)",
+                      "none");
+    if (m.amp_dim == 0 || m.demo->amp_obs_dim() != m.amp_dim)
+      ThrowInputError("learner config", "amp", "environment and demo AMP widths to match",
+                      std::to_string(m.amp_dim) + " vs " + std::to_string(m.demo->amp_obs_dim()));
+    if (config.amp.conditional) {
+      const auto& z = m.demo->style_embeddings();
+      if (z.empty())
+        ThrowInputError("learner config", "amp.conditional", "style embeddings in the demo data",
+                        "none");
+      m.style_dim = z[0].size();
+      m.style_table = torch::empty({static_cast<int64_t>(z.size()), m.style_dim});
+      for (size_t i = 0; i < z.size(); ++i)
+        for (int64_t k = 0; k < m.style_dim; ++k) m.style_table[i][k] = z[i][k];
+    }
+  }
+  torch::manual_seed(config.seed);
+  m.rng = Rng(config.seed);
+  m.ac = ActorCritic(m.segments, m.act_dim, config.network);
+  m.obs_norm = RunningMeanStd(m.obs_dim, config.ppo.obs_clip);
+  m.value_norm = RunningMeanStd(1, 1e9);
+  std::vector<torch::Tensor> params = m.ac->parameters();
+  if (m.use_amp) {
+    m.disc = Discriminator(m.amp_dim, m.style_dim, config.network);
+    m.amp_norm = RunningMeanStd(m.amp_dim, config.ppo.obs_clip);
+    auto d = m.disc->parameters();
+    params.insert(params.end(), d.begin(), d.end());
+    m.replay = std::make_unique<ReplayBuffer>(config.amp.replay_size, m.amp_dim);
+    // A fixed demo pool from its own seeded stream: regenerated identically on resume.
+    Rng demo_rng(config.seed ^ 0x9E3779B97F4A7C15ull);
+    m.demo_pool = torch::empty({config.amp.demo_pool_size, m.amp_dim});
+    std::vector<int> styles(config.amp.demo_pool_size);
+    m.demo->Sample(config.amp.demo_pool_size, demo_rng, m.demo_pool.data_ptr<float>(),
+                   styles.data());
+    m.demo_pool_styles =
+        torch::tensor(std::vector<int64_t>(styles.begin(), styles.end()), torch::kInt64);
+    m.amp_norm->Update(m.demo_pool);
+  }
+  m.optim = std::make_unique<torch::optim::Adam>(
+      params, torch::optim::AdamOptions(config.ppo.learning_rate).eps(1e-8));
+  m.env->Reset();
+  m.obs_norm->Update(FromBuffer(m.env->observations(), {m.n, m.obs_dim}));
+  m.ep_return.assign(m.n, 0.0);
+  m.ep_len.assign(m.n, 0.0);
+  m.ep_success.assign(m.n, 0);
+}
+
+Trainer::~Trainer() = default;
+
+int64_t Trainer::iteration() const { return impl_->iteration; }
+const LearnerConfig& Trainer::config() const { return impl_->cfg; }
+
+IterationStats Trainer::RunIteration() {
+  auto& m = *impl_;
+  const auto& ppo = m.cfg.ppo;
+  const auto& ampc = m.cfg.amp;
+  const int64_t T = ppo.horizon, N = m.n, D = m.obs_dim, A = m.act_dim;
+  IterationStats st;
+  const auto t_iter = Clock::now();
+
+  auto obs_buf = torch::empty({T, N, D});
+  auto act_buf = torch::empty({T, N, A});
+  auto logp_buf = torch::empty({T, N});
+  auto val_buf = torch::empty({T + 1, N});
+  auto rew_buf = torch::empty({T, N});
+  auto done_buf = torch::empty({T, N});
+  auto boot_buf = torch::zeros({T, N});  // V(terminal) for time-outs, 0 for terminations
+  torch::Tensor amp_buf, style_buf;
+  if (m.use_amp) {
+    amp_buf = torch::empty({T, N, m.amp_dim});
+    style_buf = torch::zeros({T, N}, torch::kInt64);
+  }
+  const double sigma = std::exp(m.ac->log_std());
+  double ret_sum = 0, len_sum = 0, succ_sum = 0, fall_sum = 0;
+  int64_t episodes = 0;
+
+  // ---- rollout -----------------------------------------------------------------------------
+  const auto t_collect = Clock::now();
+  {
+    torch::NoGradGuard guard;
+    auto obs = FromBuffer(m.env->observations(), {N, D});
+    for (int64_t t = 0; t < T; ++t) {
+      obs_buf[t] = obs;
+      const auto mu = m.ac->Mean(m.obs_norm->Normalize(obs), obs);
+      val_buf[t] = m.Values(obs);
+      const auto a = (mu + sigma * Randn(m.rng, N, A)).contiguous();
+      act_buf[t] = a;
+      logp_buf[t] = GaussianLogProb(a, mu, m.ac->log_std());
+      if (m.use_amp && m.style_dim > 0 && m.env->style_ids()) {
+        const int* ids = m.env->style_ids();
+        for (int64_t i = 0; i < N; ++i) style_buf[t][i] = ids[i];
+      }
+      m.env->Step(a.data_ptr<float>());
+      const float* r = m.env->rewards();
+      const uint8_t* done = m.env->dones();
+      const uint8_t* term = m.env->terminated();
+      const uint8_t* succ = m.env->successes();
+      rew_buf[t] = FromBuffer(r, {N});
+      std::vector<float> d(N);
+      std::vector<int64_t> timeouts;
+      for (int64_t i = 0; i < N; ++i) {
+        d[i] = done[i] ? 1.0f : 0.0f;
+        if (done[i] && !term[i]) timeouts.push_back(i);
+      }
+      done_buf[t] = torch::tensor(d);
+      if (!timeouts.empty()) {
+        const auto idx = torch::tensor(timeouts, torch::kInt64);
+        const auto term_obs =
+            FromBuffer(m.env->terminal_observations(), {N, D}).index_select(0, idx);
+        boot_buf[t].index_copy_(0, idx, m.Values(term_obs));
+      }
+      if (m.use_amp) amp_buf[t] = FromBuffer(m.env->amp_observations(), {N, m.amp_dim});
+      // Episode bookkeeping uses the task reward; the style part is added after the rollout.
+      for (int64_t i = 0; i < N; ++i) {
+        m.ep_return[i] += r[i];
+        m.ep_len[i] += 1;
+        m.ep_success[i] |= succ[i];
+        if (done[i]) {
+          ret_sum += m.ep_return[i];
+          len_sum += m.ep_len[i];
+          succ_sum += m.ep_success[i];
+          fall_sum += term[i];
+          ++episodes;
+          m.ep_return[i] = m.ep_len[i] = 0;
+          m.ep_success[i] = 0;
+        }
+      }
+      obs = FromBuffer(m.env->observations(), {N, D});
+    }
+    val_buf[T] = m.Values(obs);
+  }
+  const double collect_s = Since(t_collect);
+  m.samples += T * N;
+
+  // ---- rewards, advantages -----------------------------------------------------------------
+  torch::Tensor style_rew = torch::zeros({T, N});
+  torch::Tensor amp_flat, style_flat;
+  if (m.use_amp) {
+    torch::NoGradGuard guard;
+    amp_flat = amp_buf.reshape({T * N, m.amp_dim});
+    style_flat = style_buf.reshape({T * N});
+    const auto logits = m.disc->forward(m.amp_norm->Normalize(amp_flat), m.StyleOf(style_flat));
+    style_rew = StyleReward(logits, ampc).reshape({T, N});
+  }
+  const auto reward =
+      m.use_amp ? ampc.task_weight * rew_buf + ampc.style_weight * style_rew : rew_buf;
+  auto next_val = val_buf.slice(0, 1, T + 1).clone();
+  next_val = torch::where(done_buf > 0.5, boot_buf, next_val);
+  const auto values = val_buf.slice(0, 0, T);
+  const auto adv = ComputeGae(reward, values, next_val, done_buf, ppo.gamma, ppo.lambda);
+  const auto returns = adv + values;
+  if (ppo.normalize_value) m.value_norm->Update(returns.reshape({-1, 1}));
+
+  auto obs_f = obs_buf.reshape({T * N, D});
+  auto act_f = act_buf.reshape({T * N, A});
+  auto logp_f = logp_buf.reshape({T * N});
+  auto ret_f = returns.reshape({T * N});
+  auto adv_f = adv.reshape({T * N});
+  if (ppo.normalize_advantage) adv_f = (adv_f - adv_f.mean()) / (adv_f.std() + 1e-8);
+  const auto ret_target =
+      ppo.normalize_value ? m.value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
+
+  // ---- update ------------------------------------------------------------------------------
+  const auto t_update = Clock::now();
+  const int64_t total = T * N;
+  const int64_t mb = std::min<int64_t>(ppo.minibatch_size, total);
+  const int64_t n_mb = std::max<int64_t>(total / mb, 1);
+  double a_loss = 0, c_loss = 0, b_loss = 0, d_loss = 0, gp = 0, acc_d = 0, acc_a = 0, clipf = 0;
+  int64_t steps = 0, disc_samples = 0;
+  const auto params = m.AllParameters();
+  for (int epoch = 0; epoch < ppo.mini_epochs; ++epoch) {
+    const auto perm = Permutation(m.rng, total);
+    for (int64_t k = 0; k < n_mb; ++k) {
+      const auto idx = perm.slice(0, k * mb, (k + 1) * mb);
+      const auto o = obs_f.index_select(0, idx);
+      const auto norm_o = m.obs_norm->Normalize(o);
+      const auto mu = m.ac->Mean(norm_o, o);
+      const auto v = m.ac->Value(norm_o, o);
+      const auto logp = GaussianLogProb(act_f.index_select(0, idx), mu, m.ac->log_std());
+      const auto old_logp = logp_f.index_select(0, idx);
+      const auto actor = ClippedSurrogateLoss(logp, old_logp, adv_f.index_select(0, idx), ppo.clip);
+      const auto critic = (v - ret_target.index_select(0, idx)).pow(2).mean();
+      const auto bounds = BoundsLoss(mu);
+      auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
+      if (m.use_amp) {
+        const int64_t na = std::min<int64_t>(ampc.batch_size, mb);
+        const auto agent_idx = idx.slice(0, 0, na);
+        auto neg = amp_flat.index_select(0, agent_idx);
+        auto neg_style = style_flat.index_select(0, agent_idx);
+        if (m.replay->size() > 0) {
+          auto [rep, rep_style] = m.replay->Sample(na, m.rng);
+          neg = torch::cat({neg, rep});
+          neg_style = torch::cat({neg_style, rep_style});
+        }
+        std::vector<int64_t> demo_idx(na);
+        for (auto& i : demo_idx) i = m.rng.UniformInt(m.demo_pool.size(0));
+        const auto di = torch::tensor(demo_idx, torch::kInt64);
+        auto pos = m.demo_pool.index_select(0, di);
+        auto pos_style = m.demo_pool_styles.index_select(0, di);
+        if (m.style_dim > 0 && ampc.mismatch_fraction > 0 && m.style_table.size(0) > 1) {
+          // SIMS conditional negatives: real motion paired with another clip's embedding.
+          const int64_t nm = static_cast<int64_t>(ampc.mismatch_fraction * na);
+          std::vector<int64_t> wrong(nm);
+          const int64_t s = m.style_table.size(0);
+          for (int64_t i = 0; i < nm; ++i) {
+            const int64_t true_id = pos_style[i].item<int64_t>();
+            wrong[i] = (true_id + 1 + m.rng.UniformInt(s - 1)) % s;
+          }
+          neg = torch::cat({neg, pos.slice(0, 0, nm)});
+          neg_style = torch::cat({neg_style, torch::tensor(wrong, torch::kInt64)});
+        }
+        const auto dl = DiscriminatorLoss(m.disc, m.amp_norm->Normalize(pos), m.StyleOf(pos_style),
+                                          m.amp_norm->Normalize(neg), m.StyleOf(neg_style), ampc);
+        loss = loss + ampc.disc_coef * dl.total;
+        d_loss += dl.classification;
+        gp += dl.grad_penalty;
+        acc_d += dl.demo_accuracy;
+        acc_a += dl.agent_accuracy;
+        disc_samples += pos.size(0) + neg.size(0);
+      }
+      m.optim->zero_grad();
+      loss.backward();
+      if (ppo.grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, ppo.grad_norm);
+      m.optim->step();
+      a_loss += actor.item<double>();
+      c_loss += critic.item<double>();
+      b_loss += bounds.item<double>();
+      clipf += ClipFraction(logp.detach(), old_logp, ppo.clip);
+      ++steps;
+    }
+  }
+  st.update_seconds = Since(t_update);
+
+  // ---- buffers and normalisers for the next iteration ---------------------------------------
+  if (m.use_amp) {
+    m.replay->Add(amp_flat, style_flat, ampc.replay_keep_prob, m.rng);
+    m.amp_norm->Update(amp_flat);
+  }
+  m.obs_norm->Update(obs_f);
+  ++m.iteration;
+
+  // ---- statistics -------------------------------------------------------------------------
+  const double s = std::max<int64_t>(steps, 1);
+  st.iteration = m.iteration;
+  st.samples = m.samples;
+  st.task_reward = rew_buf.mean().item<double>();
+  st.style_reward = style_rew.mean().item<double>();
+  st.total_reward = reward.mean().item<double>();
+  st.episodes = episodes;
+  st.episode_return = episodes ? ret_sum / episodes : std::nan("");
+  st.episode_length = episodes ? len_sum / episodes : std::nan("");
+  st.success_rate = episodes ? succ_sum / episodes : std::nan("");
+  st.fall_rate = episodes ? fall_sum / episodes : std::nan("");
+  st.actor_loss = a_loss / s;
+  st.critic_loss = c_loss / s;
+  st.bounds_loss = b_loss / s;
+  st.disc_loss = d_loss / s;
+  st.grad_penalty = gp / s;
+  st.disc_acc_demo = acc_d / s;
+  st.disc_acc_agent = acc_a / s;
+  st.clip_fraction = clipf / s;
+  st.env_samples_per_s = static_cast<double>(T * N) / collect_s;
+  st.train_samples_per_s = static_cast<double>(steps * mb) / std::max(st.update_seconds, 1e-9);
+  // Forward + backward ≈ 3 × 2 × MACs per sample for each network (the discriminator also
+  // pays a double-backward for the gradient penalty on its demo half, ≈ 2× more).
+  const double ac_flop = 6.0 * LinearMacs(*m.ac) * static_cast<double>(steps * mb);
+  const double disc_flop =
+      m.use_amp ? 6.0 * LinearMacs(*m.disc) * static_cast<double>(disc_samples) * 1.5 : 0.0;
+  st.update_gflop = (ac_flop + disc_flop) * 1e-9;
+  st.iteration_seconds = Since(t_iter);
+  return st;
+}
+
+namespace {
+void WriteTensor(torch::serialize::OutputArchive& a, const std::string& key,
+                 const torch::Tensor& t) {
+  a.write(key, t, /*is_buffer=*/true);
+}
+torch::Tensor ReadTensor(torch::serialize::InputArchive& a, const std::string& key) {
+  torch::Tensor t;
+  a.read(key, t, /*is_buffer=*/true);
+  return t;
+}
+void SaveArchiveAtomically(torch::serialize::OutputArchive& archive,
+                           const std::filesystem::path& path) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  auto tmp = path;
+  tmp += ".tmp";
+  archive.save_to(tmp.string());
+  std::filesystem::rename(tmp, path);
+}
+torch::Tensor StringTensor(const std::string& s) {
+  auto t = torch::empty({static_cast<int64_t>(s.size())}, torch::kUInt8);
+  std::memcpy(t.data_ptr<uint8_t>(), s.data(), s.size());
+  return t;
+}
+std::string TensorString(const torch::Tensor& t) {
+  const auto c = t.contiguous();
+  return std::string(reinterpret_cast<const char*>(c.data_ptr<uint8_t>()), c.numel());
+}
+}  // namespace
+
+void Trainer::SaveCheckpoint(const std::filesystem::path& path) const {
+  const auto& m = *impl_;
+  torch::serialize::OutputArchive archive;
+  torch::serialize::OutputArchive ac, norms, opt;
+  m.ac->save(ac);
+  archive.write("actor_critic", ac);
+  m.obs_norm->save(norms);
+  archive.write("obs_norm", norms);
+  torch::serialize::OutputArchive vn;
+  m.value_norm->save(vn);
+  archive.write("value_norm", vn);
+  if (m.use_amp) {
+    torch::serialize::OutputArchive d, an;
+    m.disc->save(d);
+    archive.write("disc", d);
+    m.amp_norm->save(an);
+    archive.write("amp_norm", an);
+    WriteTensor(archive, "replay_data", m.replay->data());
+    WriteTensor(archive, "replay_styles", m.replay->styles());
+    WriteTensor(archive, "replay_size", torch::tensor({m.replay->size()}, torch::kInt64));
+  }
+  m.optim->save(opt);
+  archive.write("optimizer", opt);
+  const auto rng = m.rng.state();
+  WriteTensor(archive, "rng",
+              torch::tensor({static_cast<int64_t>(rng[0]), static_cast<int64_t>(rng[1]),
+                             static_cast<int64_t>(rng[2]), static_cast<int64_t>(rng[3])},
+                            torch::kInt64));
+  WriteTensor(archive, "counters", torch::tensor({m.iteration, m.samples}, torch::kInt64));
+  WriteTensor(archive, "ep_return", torch::tensor(m.ep_return, torch::kFloat64));
+  WriteTensor(archive, "ep_len", torch::tensor(m.ep_len, torch::kFloat64));
+  WriteTensor(
+      archive, "ep_success",
+      torch::tensor(std::vector<int64_t>(m.ep_success.begin(), m.ep_success.end()), torch::kInt64));
+  WriteTensor(archive, "env_state", StringTensor(m.env->SaveState()));
+  WriteTensor(archive, "config", StringTensor(ConfigToJson(m.cfg).dump()));
+  SaveArchiveAtomically(archive, path);
+}
+
+void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
+  auto& m = *impl_;
+  if (!std::filesystem::exists(path))
+    ThrowInputError(path.string(), "", "a checkpoint file", "missing");
+  try {
+    torch::serialize::InputArchive archive;
+    archive.load_from(path.string());
+    const auto saved_cfg = nlohmann::json::parse(TensorString(ReadTensor(archive, "config")));
+    if (saved_cfg["network"] != ConfigToJson(m.cfg.network))
+      ThrowInputError(path.string(), "network", "the same network sizes as the current config",
+                      saved_cfg["network"].dump());
+    torch::serialize::InputArchive ac, on, vn, opt;
+    archive.read("actor_critic", ac);
+    m.ac->load(ac);
+    archive.read("obs_norm", on);
+    m.obs_norm->load(on);
+    archive.read("value_norm", vn);
+    m.value_norm->load(vn);
+    if (m.use_amp) {
+      torch::serialize::InputArchive d, an;
+      archive.read("disc", d);
+      m.disc->load(d);
+      archive.read("amp_norm", an);
+      m.amp_norm->load(an);
+      const auto data = ReadTensor(archive, "replay_data");
+      if (data.sizes() != m.replay->data().sizes())
+        ThrowInputError(path.string(), "replay_data", "a replay buffer of the configured size",
+                        "another size");
+      m.replay->data().copy_(data);
+      m.replay->styles().copy_(ReadTensor(archive, "replay_styles"));
+      m.replay->set_size(ReadTensor(archive, "replay_size")[0].item<int64_t>());
+    }
+    archive.read("optimizer", opt);
+    m.optim->load(opt);
+    const auto rng = ReadTensor(archive, "rng");
+    m.rng.set_state({static_cast<uint64_t>(rng[0].item<int64_t>()),
+                     static_cast<uint64_t>(rng[1].item<int64_t>()),
+                     static_cast<uint64_t>(rng[2].item<int64_t>()),
+                     static_cast<uint64_t>(rng[3].item<int64_t>())});
+    const auto counters = ReadTensor(archive, "counters");
+    m.iteration = counters[0].item<int64_t>();
+    m.samples = counters[1].item<int64_t>();
+    const auto er = ReadTensor(archive, "ep_return"), el = ReadTensor(archive, "ep_len"),
+               es = ReadTensor(archive, "ep_success");
+    if (er.numel() != m.n)
+      ThrowInputError(path.string(), "ep_return", std::to_string(m.n) + " environments",
+                      std::to_string(er.numel()));
+    for (int64_t i = 0; i < m.n; ++i) {
+      m.ep_return[i] = er[i].item<double>();
+      m.ep_len[i] = el[i].item<double>();
+      m.ep_success[i] = static_cast<uint8_t>(es[i].item<int64_t>());
+    }
+    m.env->LoadState(TensorString(ReadTensor(archive, "env_state")));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    ThrowInputError(path.string(), "", "a checkpoint written by this trainer configuration",
+                    e.what());
+  }
+}
+
+void Trainer::ExportPolicy(const std::filesystem::path& path) const {
+  const auto& m = *impl_;
+  torch::serialize::OutputArchive archive, ac, on;
+  m.ac->save(ac);
+  archive.write("actor_critic", ac);
+  m.obs_norm->save(on);
+  archive.write("obs_norm", on);
+  nlohmann::json segs = nlohmann::json::array();
+  for (const auto& s : m.segments)
+    segs.push_back({{"name", s.name},
+                    {"kind", static_cast<int>(s.kind)},
+                    {"offset", s.offset},
+                    {"size", s.size},
+                    {"rows", s.rows},
+                    {"cols", s.cols}});
+  const nlohmann::json meta = {{"format", "sims-policy-1"},
+                               {"obs_dim", m.obs_dim},
+                               {"action_dim", m.act_dim},
+                               {"segments", segs},
+                               {"network", ConfigToJson(m.cfg.network)},
+                               {"obs_clip", m.cfg.ppo.obs_clip},
+                               {"iteration", m.iteration}};
+  WriteTensor(archive, "metadata", StringTensor(meta.dump()));
+  SaveArchiveAtomically(archive, path);
+}
+
+std::vector<float> Trainer::FlatParameters() const {
+  std::vector<float> out;
+  for (const auto& p : impl_->AllParameters()) {
+    const auto c = p.detach().contiguous();
+    out.insert(out.end(), c.data_ptr<float>(), c.data_ptr<float>() + c.numel());
+  }
+  return out;
+}
+
+void Trainer::ActMean(const float* obs, int n, float* actions) const {
+  torch::NoGradGuard guard;
+  const auto o = FromBuffer(obs, {n, impl_->obs_dim});
+  const auto mu = impl_->ac->Mean(impl_->obs_norm->Normalize(o), o).contiguous();
+  std::memcpy(actions, mu.data_ptr<float>(), sizeof(float) * n * impl_->act_dim);
+}
+
+// ---- Policy --------------------------------------------------------------------------------
+
+struct Policy::Impl {
+  ActorCritic ac{nullptr};
+  RunningMeanStd obs_norm{nullptr};
+  int obs_dim = 0, action_dim = 0;
+  std::string metadata;
+};
+
+Policy::Policy(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
+  BindTorchThreads();
+  if (!std::filesystem::exists(path))
+    ThrowInputError(path.string(), "", "a policy file", "missing");
+  try {
+    torch::serialize::InputArchive archive;
+    archive.load_from(path.string());
+    impl_->metadata = TensorString(ReadTensor(archive, "metadata"));
+    const auto meta = nlohmann::json::parse(impl_->metadata);
+    std::vector<sim::ObsSegment> segments;
+    for (const auto& s : meta.at("segments")) {
+      sim::ObsSegment seg;
+      seg.name = s.at("name").get<std::string>();
+      seg.kind = static_cast<sim::ObsSegment::Kind>(s.at("kind").get<int>());
+      seg.offset = s.at("offset").get<int>();
+      seg.size = s.at("size").get<int>();
+      seg.rows = s.at("rows").get<int>();
+      seg.cols = s.at("cols").get<int>();
+      segments.push_back(seg);
+    }
+    const auto net = ConfigFromJson<NetworkConfig>(meta.at("network"), path.string());
+    impl_->obs_dim = meta.at("obs_dim").get<int>();
+    impl_->action_dim = meta.at("action_dim").get<int>();
+    impl_->ac = ActorCritic(segments, impl_->action_dim, net);
+    impl_->obs_norm = RunningMeanStd(impl_->obs_dim, meta.at("obs_clip").get<double>());
+    torch::serialize::InputArchive ac, on;
+    archive.read("actor_critic", ac);
+    impl_->ac->load(ac);
+    archive.read("obs_norm", on);
+    impl_->obs_norm->load(on);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    ThrowInputError(path.string(), "", "a policy file written by ExportPolicy", e.what());
+  }
+}
+
+Policy::~Policy() = default;
+Policy::Policy(Policy&&) noexcept = default;
+Policy& Policy::operator=(Policy&&) noexcept = default;
+int Policy::obs_dim() const { return impl_->obs_dim; }
+int Policy::action_dim() const { return impl_->action_dim; }
+const std::string& Policy::metadata_json() const { return impl_->metadata; }
+
+void Policy::Act(const float* obs, int n, float* actions) const {
+  torch::NoGradGuard guard;
+  const auto o = FromBuffer(obs, {n, impl_->obs_dim});
+  const auto mu = impl_->ac->Mean(impl_->obs_norm->Normalize(o), o).contiguous();
+  std::memcpy(actions, mu.data_ptr<float>(), sizeof(float) * n * impl_->action_dim);
+}
+
+}  // namespace sims::learning
