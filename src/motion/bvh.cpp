@@ -304,10 +304,13 @@ BvhMotion ParseBvh(const std::string& text, const std::string& source) {
                    bvh.num_frames);
       break;
     }
-    if (count != channels)
+    if (count != channels) {
+      const bool last = s.find_first_not_of(" \t\r\n", eol) == std::string::npos;
       lex.Fail(line, "frame " + std::to_string(frame),
                std::to_string(channels) + " values (the CHANNELS declared in HIERARCHY)",
-               std::to_string(count) + " values");
+               std::to_string(count) + " values" +
+                   (last && count < channels ? " (truncated file?)" : ""));
+    }
     ++frame;
   }
   if (frame < bvh.num_frames)
