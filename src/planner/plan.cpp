@@ -1,0 +1,66 @@
+#include "sims/planner/plan.h"
+
+#include <algorithm>
+
+namespace sims::planner {
+
+namespace {
+bool OneOf(const std::string& s, std::initializer_list<const char*> values) {
+  return std::any_of(values.begin(), values.end(), [&](const char* v) { return s == v; });
+}
+}  // namespace
+
+void LayoutSource::Validate() const {
+  Require(OneOf(kind, {"builtin_room", "builtin_house", "morse", "front3d", "scene_file", "given"}),
+          "kind", "one of builtin_room, builtin_house, morse, front3d, scene_file, given");
+  if (kind == "front3d" || kind == "scene_file") Require(!path.empty(), "path", "a file path");
+  if (kind == "builtin_room") Require(!name.empty(), "name", "a built-in room name");
+}
+
+std::string LayoutSource::SceneKey() const {
+  return kind + "|" + path + "|" + model_dir + "|" + name;
+}
+
+void PlanLayout::Validate() const {
+  Require(OneOf(mode, {"single", "composed", "given"}), "mode", "single, composed or given");
+  if (mode != "given") Require(!rooms.empty(), "rooms", "at least one room");
+}
+
+void PlanKeyframe::Validate() const {
+  Require(OneOf(skill, {"walk", "sit", "lie", "reach", "getup"}), "skill",
+          "one of walk, sit, lie, reach, getup");
+  if (placed && skill != "walk")
+    Require(!object.empty(), "object", "an object instance when placed");
+}
+
+void Plan::Validate() const {
+  Require(version == 1, "version", "1");
+  Require(OneOf(difficulty, {"simple", "mid", "hard"}), "difficulty", "simple, mid or hard");
+  for (std::size_t i = 0; i < keyframes.size(); ++i)
+    Require(keyframes[i].index == static_cast<int>(i), "keyframes[" + std::to_string(i) + "].index",
+            "the keyframe's position " + std::to_string(i));
+}
+
+bool Plan::AllPlaced() const { return Unplaced().empty(); }
+
+std::vector<int> Plan::Unplaced() const {
+  std::vector<int> out;
+  for (const PlanKeyframe& k : keyframes)
+    if (!k.placed) out.push_back(k.index);
+  return out;
+}
+
+nlohmann::json PlanToJson(const Plan& plan) { return ConfigToJson(plan); }
+
+Plan PlanFromJson(const nlohmann::json& j, const std::string& source) {
+  return ConfigFromJson<Plan>(j, source);
+}
+
+Plan LoadPlan(const std::filesystem::path& path) { return LoadConfig<Plan>(path); }
+
+void SavePlan(const std::filesystem::path& path, const Plan& plan) {
+  ValidateConfig(plan, path.string());
+  WriteJsonFile(path, PlanToJson(plan));
+}
+
+}  // namespace sims::planner

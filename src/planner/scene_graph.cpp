@@ -1,0 +1,253 @@
+#include "sims/planner/scene_graph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "sims/planner/text.h"
+
+#if SIMS_PLANNER_WITH_SCENE
+#include "sims/scene/ray_caster.h"
+#endif
+
+namespace sims::planner {
+
+void SceneGraphConfig::Validate() const {
+  Require(max_edge_distance > 0, "max_edge_distance", "a positive distance in metres");
+  Require(sight_height > 0, "sight_height", "a positive height in metres");
+}
+
+void MatchCostConfig::Validate() const {
+  Require(missing_node >= 0 && extra_node >= 0 && missing_edge >= 0 && extra_edge >= 0 &&
+              unimportant_weight >= 0 && room_mismatch >= 0 && composition_penalty >= 0,
+          "missing_node", "non-negative costs");
+}
+
+EditCosts RetrievalCosts(const MatchCostConfig& config, const Vocabulary& vocab) {
+  EditCosts c;
+  const Vocabulary* v = &vocab;
+  auto weight = [config](const GraphNode& n) {
+    return n.important ? 1.0 : config.unimportant_weight;
+  };
+  c.substitute = [v](const GraphNode& a, const GraphNode& b) {
+    std::optional<double> s = v->SubstitutionCost(a.category, b.category);
+    return s ? *s : std::numeric_limits<double>::infinity();
+  };
+  c.remove = [config, weight](const GraphNode& a) { return config.missing_node * weight(a); };
+  c.insert = [config, weight](const GraphNode& b) { return config.extra_node * weight(b); };
+  c.edge_remove = config.missing_edge;
+  c.edge_insert = config.extra_edge;
+  return c;
+}
+
+std::string CanonicalCategory(const std::string& category, const Vocabulary& vocab) {
+  if (auto f = vocab.FindFurniture(category)) return *f;
+  std::string s = ToLower(Trim(category));
+  std::replace(s.begin(), s.end(), ' ', '_');
+  return s;
+}
+
+scene::Aabb ObjectBounds(const scene::Object& object) {
+  scene::Aabb box;
+  for (const scene::Part& p : object.parts) {
+    for (const Eigen::Vector3d& v : p.mesh.vertices) box.Extend(v);
+    for (const Eigen::Vector3d& v : p.points) box.Extend(v);
+  }
+  if (box.empty()) box.Extend(object.X_WO.translation());
+  return box;
+}
+
+namespace {
+
+// Segment p→q against a box: the parameter interval [t0, t1] inside, or false.
+bool SegmentBox(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const scene::Aabb& b,
+                double* t0, double* t1) {
+  double lo = 0.0, hi = 1.0;
+  Eigen::Vector3d d = q - p;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(d[k]) < 1e-12) {
+      if (p[k] < b.min[k] || p[k] > b.max[k]) return false;
+      continue;
+    }
+    double a = (b.min[k] - p[k]) / d[k], c = (b.max[k] - p[k]) / d[k];
+    if (a > c) std::swap(a, c);
+    lo = std::max(lo, a);
+    hi = std::min(hi, c);
+    if (lo > hi) return false;
+  }
+  *t0 = lo;
+  *t1 = hi;
+  return true;
+}
+
+// Möller–Trumbore restricted to the open segment (0, 1).
+[[maybe_unused]] bool SegmentTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                                      const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                      const Eigen::Vector3d& c) {
+  Eigen::Vector3d d = q - p, e1 = b - a, e2 = c - a;
+  Eigen::Vector3d h = d.cross(e2);
+  double det = e1.dot(h);
+  if (std::abs(det) < 1e-12) return false;
+  double inv = 1.0 / det;
+  Eigen::Vector3d s = p - a;
+  double u = inv * s.dot(h);
+  if (u < 0 || u > 1) return false;
+  Eigen::Vector3d qv = s.cross(e1);
+  double v = inv * d.dot(qv);
+  if (v < 0 || u + v > 1) return false;
+  double t = inv * e2.dot(qv);
+  return t > 1e-6 && t < 1 - 1e-6;
+}
+
+double FootprintGap(const scene::Aabb& a, const scene::Aabb& b) {
+  double dx = std::max({0.0, a.min.x() - b.max.x(), b.min.x() - a.max.x()});
+  double dy = std::max({0.0, a.min.y() - b.max.y(), b.min.y() - a.max.y()});
+  return std::hypot(dx, dy);
+}
+
+}  // namespace
+
+LineOfSight DefaultLineOfSight(const scene::Scene& scene) {
+#if SIMS_PLANNER_WITH_SCENE
+  auto caster = std::make_shared<scene::RayCaster>(scene);
+  return [caster](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return !caster->Occluded(a, b);
+  };
+#else
+  // Without the scene module: walls exactly, furniture by bounding box.
+  auto walls = std::make_shared<scene::TriangleMesh>(scene.walls);
+  auto boxes = std::make_shared<std::vector<scene::Aabb>>();
+  for (const scene::Object& o : scene.objects) boxes->push_back(ObjectBounds(o));
+  return [walls, boxes](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    for (const Eigen::Vector3i& t : walls->triangles)
+      if (SegmentTriangle(a, b, walls->vertices[t[0]], walls->vertices[t[1]],
+                          walls->vertices[t[2]]))
+        return false;
+    for (const scene::Aabb& box : *boxes) {
+      double t0, t1;
+      if (SegmentBox(a, b, box, &t0, &t1) && t1 > 1e-6 && t0 < 1 - 1e-6) return false;
+    }
+    return true;
+  };
+#endif
+}
+
+SceneGraph BuildSceneGraph(const scene::Scene& scene, const SceneGraphConfig& config,
+                           const Vocabulary& vocab, const LineOfSight& line_of_sight,
+                           const std::vector<std::string>& rooms) {
+  SceneGraph g;
+  g.name = scene.name;
+  std::map<std::string, std::string> room_types;
+  for (const scene::Room& r : scene.rooms) {
+    auto t = vocab.FindRoomType(r.type);
+    room_types[r.id] = t ? *t : r.type;
+  }
+  std::set<std::string> ignore;
+  for (const std::string& c : config.ignore_categories) ignore.insert(CanonicalCategory(c, vocab));
+  std::vector<scene::Aabb> boxes;
+  for (const scene::Object& o : scene.objects) {
+    if (!rooms.empty() && std::find(rooms.begin(), rooms.end(), o.room) == rooms.end()) continue;
+    std::string category = CanonicalCategory(o.category, vocab);
+    if (ignore.count(category) || category.empty()) continue;
+    GraphNode n;
+    n.category = category;
+    n.instance = o.instance;
+    n.important = o.important && vocab.IsImportant(category);
+    scene::Aabb box = ObjectBounds(o);
+    n.position = box.center();
+    n.room = o.room;
+    if (auto it = room_types.find(o.room); it != room_types.end()) n.room_types = {it->second};
+    g.nodes.push_back(n);
+    boxes.push_back(box);
+  }
+  LineOfSight los = line_of_sight ? line_of_sight : DefaultLineOfSight(scene);
+  for (int i = 0; i < g.size(); ++i) {
+    for (int j = i + 1; j < g.size(); ++j) {
+      if (FootprintGap(boxes[i], boxes[j]) > config.max_edge_distance) continue;
+      Eigen::Vector3d a = boxes[i].center(), b = boxes[j].center();
+      a.z() = b.z() = config.sight_height;
+      // Leave each object's own box first, so the test only sees what lies between them.
+      double ta0, ta1, tb0, tb1;
+      scene::Aabb ai = boxes[i], bj = boxes[j];
+      ai.min.z() = bj.min.z() = -1e9;
+      ai.max.z() = bj.max.z() = 1e9;
+      double start = SegmentBox(a, b, ai, &ta0, &ta1) ? ta1 : 0.0;
+      double end = SegmentBox(a, b, bj, &tb0, &tb1) ? tb0 : 1.0;
+      const double eps = 0.02 / std::max(1e-9, (b - a).norm());
+      if (start + eps >= end - eps) {  // footprints touch or overlap: neighbours
+        g.AddEdge(i, j);
+        continue;
+      }
+      Eigen::Vector3d p = a + (start + eps) * (b - a), q = a + (end - eps) * (b - a);
+      if (los(p, q)) g.AddEdge(i, j);
+    }
+  }
+  return g;
+}
+
+RequiredGraph BuildRequiredGraph(const LongScript& script, const std::vector<int>& segments,
+                                 const Vocabulary& vocab) {
+  RequiredGraph out;
+  out.keyframe_node.assign(script.keyframes.size(), -1);
+  auto wanted = [&](int s) {
+    return segments.empty() || std::find(segments.begin(), segments.end(), s) != segments.end();
+  };
+  // Per segment: distinct (category, instance) in order of first use, ranked within category.
+  std::map<int, std::vector<std::pair<std::string, int>>> seg_objects;
+  std::map<std::pair<int, std::pair<std::string, int>>, int> rank;  // (segment, object) → rank
+  for (const Keyframe& k : script.keyframes) {
+    if (k.furniture == "floor" || !wanted(k.segment)) continue;
+    auto& objs = seg_objects[k.segment];
+    std::pair<std::string, int> obj{k.furniture, k.instance};
+    if (std::find(objs.begin(), objs.end(), obj) != objs.end()) continue;
+    int r = static_cast<int>(std::count_if(objs.begin(), objs.end(),
+                                           [&](const auto& o) { return o.first == k.furniture; }));
+    objs.push_back(obj);
+    rank[{k.segment, obj}] = r;
+  }
+  // Consolidation: node (category, r) exists for r below the largest per-segment count; nodes
+  // appear in order of first use.
+  std::map<std::pair<std::string, int>, int> node_of;
+  auto room_of = [&](int segment) -> std::string {
+    return segment >= 0 && segment < static_cast<int>(script.segment_rooms.size())
+               ? script.segment_rooms[segment]
+               : std::string();
+  };
+  for (std::size_t i = 0; i < script.keyframes.size(); ++i) {
+    const Keyframe& k = script.keyframes[i];
+    if (k.furniture == "floor" || !wanted(k.segment)) continue;
+    int r = rank[{k.segment, {k.furniture, k.instance}}];
+    auto key = std::make_pair(k.furniture, r);
+    auto it = node_of.find(key);
+    if (it == node_of.end()) {
+      GraphNode n;
+      n.category = k.furniture;
+      n.instance = k.furniture + "#" + std::to_string(r);
+      n.important = vocab.IsImportant(k.furniture);
+      it = node_of.emplace(key, out.graph.size()).first;
+      out.graph.nodes.push_back(n);
+    }
+    std::string room = room_of(k.segment);
+    auto& types = out.graph.nodes[it->second].room_types;
+    if (!room.empty() && std::find(types.begin(), types.end(), room) == types.end())
+      types.push_back(room);
+    out.keyframe_node[i] = it->second;
+  }
+  // Edge integration: consecutive distinct objects of one short script.
+  std::map<int, int> last_node;
+  for (std::size_t i = 0; i < script.keyframes.size(); ++i) {
+    int n = out.keyframe_node[i];
+    if (n < 0) continue;
+    int s = script.keyframes[i].segment;
+    auto it = last_node.find(s);
+    if (it != last_node.end() && it->second != n) out.graph.AddEdge(it->second, n);
+    last_node[s] = n;
+  }
+  out.graph.name = "required graph";
+  return out;
+}
+
+}  // namespace sims::planner
