@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "common/test_util.h"
+#include "motion/motion_test_util.h"
 #include "sims/core/paths.h"
 #include "sims/core/rng.h"
 #include "sims/motion/rotation.h"
@@ -14,29 +15,12 @@ namespace {
 
 const char kCmu[] = "/usr/share/assimp/models/BVH/01_01.bvh";
 
-// A smooth random in-limit motion.
-MotionClip WigglyClip(int frames, uint64_t seed) {
-  const HumanoidSkeleton& s = HumanoidSkeleton::Default();
-  Rng rng(seed);
-  DofVector mid = 0.5 * (s.lower + s.upper), amp = 0.4 * (s.upper - s.lower);
-  DofVector phase, freq;
-  for (int i = 0; i < sim::kNumDofs; ++i) phase[i] = rng.Uniform(0, 6.28), freq[i] = rng.Uniform(0.5, 2);
-  std::vector<MotionFrame> fr(frames);
-  for (int f = 0; f < frames; ++f) {
-    const double t = f / 30.0;
-    for (int i = 0; i < sim::kNumDofs; ++i) fr[f].dof_pos[i] = mid[i] + amp[i] * std::sin(freq[i] * t + phase[i]);
-    fr[f].root_pos = Eigen::Vector3d(0.5 * t, 0.2 * std::sin(t), 0.85 + 0.03 * std::sin(3 * t));
-    fr[f].root_rot = Eigen::AngleAxisd(0.7 * t, Eigen::Vector3d::UnitZ()) *
-                     Eigen::AngleAxisd(0.2 * std::sin(t), Eigen::Vector3d::UnitX());
-  }
-  return MotionClip(30.0, std::move(fr));
-}
-
 class CmuRetarget : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     if (!std::filesystem::exists(kCmu)) return;
-    clip_ = new MotionClip(RetargetBvh(ReadBvh(kCmu), LoadRetargetConfig(ConfigPath("retarget/cmu.json")),
+    clip_ = new MotionClip(RetargetBvh(ReadBvh(kCmu),
+                                       LoadRetargetConfig(ConfigPath("retarget/cmu.json")),
                                        HumanoidSkeleton::Default(), &report_, kCmu));
   }
   static void TearDownTestSuite() { delete clip_; }
@@ -107,7 +91,7 @@ TEST_F(CmuRetarget, SegmentLengthsOfTheHumanoidArePreserved) {
 
 // Humanoid clip → BVH (Y-up and Z-up) → retarget back gives the same clip.
 TEST(RetargetTest, HumanoidBvhRoundTrip) {
-  const MotionClip clip = WigglyClip(40, 3);
+  const MotionClip clip = testing_util::WigglyClip(40, 3);
   const auto dir = testing::TempDir("retarget");
   for (bool y_up : {true, false}) {
     HumanoidBvhOptions o;
@@ -124,7 +108,8 @@ TEST(RetargetTest, HumanoidBvhRoundTrip) {
     for (int f = 0; f < clip.num_frames(); ++f) {
       EXPECT_LT((back.frame(f).root_pos - clip.frame(f).root_pos).norm(), 1e-6) << y_up;
       EXPECT_LT(back.frame(f).root_rot.angularDistance(clip.frame(f).root_rot), 1e-6) << y_up;
-      EXPECT_LT((back.frame(f).dof_pos - clip.frame(f).dof_pos).cwiseAbs().maxCoeff(), 1e-6) << y_up;
+      EXPECT_LT((back.frame(f).dof_pos - clip.frame(f).dof_pos).cwiseAbs().maxCoeff(), 1e-6)
+          << y_up;
     }
   }
 }
