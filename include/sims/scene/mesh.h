@@ -37,7 +37,7 @@ struct Aabb {
 
 /// Indexed triangle mesh in metres; vertices are 3×N-free rows (one Vector3d per vertex).
 struct TriangleMesh {
-  std::vector<Eigen::Vector3d> vertices;  ///< Vertex positions.
+  std::vector<Eigen::Vector3d> vertices;   ///< Vertex positions.
   std::vector<Eigen::Vector3i> triangles;  ///< Counter-clockwise vertex indices.
 
   /// True without triangles.
@@ -61,6 +61,18 @@ struct TriangleMesh {
   /// A closed cylinder along z with the given segment count.
   static TriangleMesh Cylinder(const Eigen::Vector3d& base_center, double radius, double height,
                                int segments = 16);
+
+  /// Signed volume by the divergence theorem (meaningful for closed, outward-wound meshes).
+  double SignedVolume() const;
+  /// Unit normal of triangle t (zero for degenerate triangles).
+  Eigen::Vector3d TriangleNormal(int t) const;
+  /// Merges vertices closer than `tolerance` and drops degenerate triangles.
+  TriangleMesh Welded(double tolerance = 1e-6) const;
+  /// Splits into pieces connected through shared edges (after welding with `tolerance`), so
+  /// primitives that merely touch at a corner or overlap stay separate.
+  std::vector<TriangleMesh> EdgeConnectedComponents(double tolerance = 1e-6) const;
+  /// True when every edge is shared by exactly two triangles (after welding).
+  bool IsClosed(double tolerance = 1e-6) const;
 };
 
 /// Closest point to p on triangle (a, b, c).

@@ -1,0 +1,71 @@
+// LoadSceneFile: one entry point that picks the loader by extension and content.
+#include <cstdlib>
+
+#include "scene/loader_util.h"
+#include "sims/core/error.h"
+#include "sims/core/paths.h"
+#include "sims/scene/builtin.h"
+#include "sims/scene/loaders.h"
+
+namespace sims::scene {
+
+namespace {
+
+std::filesystem::path EnvOr(const char* var, const std::filesystem::path& fallback) {
+  if (const char* v = std::getenv(var); v && *v) return v;
+  return fallback;
+}
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+Scene LoadSceneFile(const std::string& spec) {
+  namespace fs = std::filesystem;
+  if (spec.rfind("builtin:", 0) == 0) return BuiltinScene(spec.substr(8));
+  std::string path_part = spec, fragment;
+  if (const auto hash = spec.rfind('#'); hash != std::string::npos && !fs::exists(spec)) {
+    path_part = spec.substr(0, hash);
+    fragment = spec.substr(hash + 1);
+  }
+  const fs::path path(path_part);
+  if (!fs::exists(path)) {
+    // Not a file: a built-in name, or a clear error listing both options.
+    if (path.extension().empty() && path.parent_path().empty()) return BuiltinScene(spec);
+    ThrowInputError(spec, "", "an existing scene file or folder, or a built-in scene name",
+                    "no such file");
+  }
+  if (fs::is_directory(path)) {
+    if (fs::exists(path / "result.json")) {
+      Scene s;
+      s.name = path.filename().string();
+      s.AddObject(LoadPartNet(path));
+      return s;
+    }
+    return LoadScanNet(path);
+  }
+  const std::string ext = internal::LowerExtension(path);
+  if (ext == ".json") {
+    const nlohmann::json j = internal::ReadJson(path);
+    if (j.is_object() && j.contains("furniture") && j.contains("scene")) {
+      const fs::path future =
+          EnvOr("SIMS_FUTURE_DIR", path.parent_path().parent_path() / "3D-FUTURE-model");
+      return LoadFront3D(path, future);
+    }
+    if (j.is_object() && !j.empty() && j.begin()->is_object() && j.begin()->contains("obj"))
+      return LoadScenePlan(path, EnvOr("SIMS_PARTNET_DIR", DataPath("partnet")), fragment);
+    ThrowInputError(path.string(), "",
+                    "a 3D-FRONT house (furniture, mesh, scene) or a UniHSI ScenePlan "
+                    "({plan_id: {obj: ...}})",
+                    "a JSON file of neither kind");
+  }
+  if (ext == ".ply" && EndsWith(path.filename().string(), "_vh_clean_2.ply"))
+    return LoadScanNet(path);
+  if (ext == ".blend") return LoadMorseScene(path);
+  return LoadMeshScene(path);
+}
+
+}  // namespace sims::scene
