@@ -65,7 +65,7 @@ struct LayoutEntry {
   /// The layout as a scene graph.
   SceneGraph Graph() const;
   /// True for a single room (usable in multi-room composition).
-  bool IsSingleRoom() const { return room_types.size() == 1 && !source.room_id.empty(); }
+  bool IsSingleRoom() const { return room_types.size() == 1; }
 };
 
 /// The layout database file written by apps/index_layouts.
