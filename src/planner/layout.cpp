@@ -179,8 +179,10 @@ std::vector<LayoutEntry> MakeLayoutEntries(const scene::Scene& scene, const Layo
 // Composition.
 
 namespace {
-bool Overlaps(const std::array<double, 4>& a, const std::array<double, 4>& b) {
-  return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+double OverlapArea(const std::array<double, 4>& a, const std::array<double, 4>& b) {
+  double w = std::min(a[2], b[2]) - std::max(a[0], b[0]);
+  double h = std::min(a[3], b[3]) - std::max(a[1], b[1]);
+  return w > 0 && h > 0 ? w * h : 0.0;
 }
 }  // namespace
 
@@ -223,28 +225,32 @@ Composition ComposeRooms(const std::vector<RoomPiece>& rooms, const CompositionC
     double common = std::min(f[3], g[3]);
     double width = std::min(w, std::max(0.3, common - 0.1));
     double lo = 0.5 * width + 0.05, hi = common - 0.5 * width - 0.05;
-    double mid = 0.5 * common, yc = mid;
+    // Scan outwards from the middle; take the first spot whose corridor is free, else the spot
+    // that overlaps furniture least.
+    double mid = 0.5 * common, yc = mid, least = kInf;
     bool found = false;
     for (double step = 0.0; !found && step <= 0.5 * common; step += 0.05) {
       for (double cand : {mid - step, mid + step}) {
         if (cand < lo || cand > hi) continue;
         std::array<double, 4> corridor{xw - 0.5 * t - cfg.door_clearance, cand - 0.5 * width,
                                        xw + 0.5 * t + cfg.door_clearance, cand + 0.5 * width};
-        bool blocked = false;
+        double overlap = 0.0;
         for (std::size_t r : {k, k + 1})
-          for (const auto& o : obstacles[r]) blocked = blocked || Overlaps(corridor, o);
-        if (!blocked) {
+          for (const auto& o : obstacles[r]) overlap += OverlapArea(corridor, o);
+        if (overlap < least - 1e-12) {
+          least = overlap;
           yc = cand;
+        }
+        if (overlap <= 0.0) {
           found = true;
           break;
         }
       }
     }
     if (!found)
-      spdlog::warn(
-          "ComposeRooms: no free spot for the door between '{}' and '{}'; using the "
-          "middle of the shared wall",
-          rooms[k].id, rooms[k + 1].id);
+      spdlog::warn("ComposeRooms: furniture stands in front of every door position between '{}' "
+                   "and '{}'; using the least obstructed one",
+                   rooms[k].id, rooms[k + 1].id);
     wall(xw, f[1] - t, xw, yc - 0.5 * width);
     wall(xw, yc + 0.5 * width, xw, top);
     PlanDoor d;

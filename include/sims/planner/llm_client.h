@@ -1,0 +1,108 @@
+// A minimal OpenAI-compatible chat-completions client (llama.cpp server, vLLM, Ollama's /v1,
+// any proxy) over plain HTTP/1.1 on POSIX sockets: no new dependency, no TLS. https endpoints
+// are refused with a clear message (run a local server, or a plain-HTTP proxy in front of a
+// remote one). Every failure is a sims::Error (LlmError) so the planner can fall back.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sims/core/config.h"
+#include "sims/core/error.h"
+
+namespace sims::planner {
+
+/// LLM back-end settings (configs/planner/planner.json "llm"; flags and environment override).
+struct LlmConfig {
+  std::string endpoint;  ///< Base URL ("http://127.0.0.1:8080/v1"); "" → $SIMS_LLM_ENDPOINT.
+  std::string model = "default";          ///< Model name; $SIMS_LLM_MODEL overrides "default".
+  std::string api_key;                    ///< Key; "" → $<api_key_env>, then $OPENAI_API_KEY.
+  std::string api_key_env = "SIMS_LLM_API_KEY";  ///< Environment variable holding the key.
+  double timeout_s = 60.0;                ///< Whole-request time-out (connect + reply).
+  double temperature = 0.0;               ///< Sampling temperature (0: as repeatable as possible).
+  int max_tokens = 2048;                  ///< Reply length limit.
+  bool json_mode = true;                  ///< Ask for response_format {"type": "json_object"}.
+  std::string system_prompt = "planner/llm_system_prompt.txt";  ///< Under configs/.
+  std::string user_prompt = "planner/llm_user_prompt.txt";      ///< Under configs/.
+  int candidates = 24;                    ///< Short scripts offered to the model.
+
+  /// Lists the fields for the JSON archives.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(endpoint));
+    a->Visit(SIMS_NVP(model));
+    a->Visit(SIMS_NVP(api_key));
+    a->Visit(SIMS_NVP(api_key_env));
+    a->Visit(SIMS_NVP(timeout_s));
+    a->Visit(SIMS_NVP(temperature));
+    a->Visit(SIMS_NVP(max_tokens));
+    a->Visit(SIMS_NVP(json_mode));
+    a->Visit(SIMS_NVP(system_prompt));
+    a->Visit(SIMS_NVP(user_prompt));
+    a->Visit(SIMS_NVP(candidates));
+  }
+  /// Positive time-out and token limit, candidates ≥ 1.
+  void Validate() const;
+  /// Endpoint after the environment fallback ("" = no LLM).
+  std::string ResolvedEndpoint() const;
+  /// Model after the environment fallback.
+  std::string ResolvedModel() const;
+  /// API key after the environment fallbacks ("" = none).
+  std::string ResolvedApiKey() const;
+};
+
+/// Why a request failed.
+class LlmError : public Error {
+ public:
+  /// Failure kinds the caller may want to tell apart.
+  enum class Kind { kConfig, kConnect, kTimeout, kHttp, kProtocol, kReply };
+  /// `kind` classifies, `message` explains.
+  LlmError(Kind kind, const std::string& message) : Error(message), kind_(kind) {}
+  /// The kind.
+  Kind kind() const { return kind_; }
+
+ private:
+  Kind kind_;
+};
+
+/// Parts of an http:// URL.
+struct HttpUrl {
+  std::string host;         ///< Host name or address.
+  int port = 80;            ///< Port.
+  std::string path = "/";   ///< Path (with query).
+};
+
+/// Parses "http://host[:port][/path]"; https and other schemes throw LlmError(kConfig).
+HttpUrl ParseHttpUrl(const std::string& url);
+
+/// The chat-completions URL for a base endpoint ("…/v1" → "…/v1/chat/completions"; a URL that
+/// already ends in /chat/completions is kept; a bare host gets /v1/chat/completions).
+std::string ChatCompletionsUrl(const std::string& endpoint);
+
+/// An HTTP response.
+struct HttpResponse {
+  int status = 0;     ///< Status code.
+  std::string body;   ///< Body (chunked transfer decoded).
+};
+
+/// POSTs `body` and waits at most `timeout_s` for the whole exchange.
+HttpResponse HttpPost(const std::string& url,
+                      const std::vector<std::pair<std::string, std::string>>& headers,
+                      const std::string& body, double timeout_s);
+
+/// One chat message.
+struct ChatMessage {
+  std::string role;     ///< system, user or assistant.
+  std::string content;  ///< Text.
+};
+
+/// Sends a chat-completions request and returns choices[0].message.content.
+std::string ChatCompletion(const LlmConfig& config, const std::vector<ChatMessage>& messages,
+                           uint64_t seed);
+
+/// Removes a surrounding Markdown code fence (```json … ```) and text around a JSON object.
+std::string StripToJson(const std::string& reply);
+
+}  // namespace sims::planner

@@ -1,0 +1,272 @@
+// LLM back-end against a tiny HTTP server on 127.0.0.1 that replays recorded replies: valid
+// replies are used, malformed ones, HTTP errors and time-outs fall back to the embedded planner.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "common/test_util.h"
+#include "sims/planner/llm_client.h"
+#include "sims/planner/planner.h"
+
+namespace sims::planner {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string ReadFile(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string HttpOk(const std::string& body) {
+  return "HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nContent-Length: " +
+         std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body;
+}
+
+std::string Recorded(const std::string& name) {
+  return HttpOk(ReadFile(sims::testing::TestData("planner/llm/" + name)));
+}
+
+// Serves one canned response per connection, in order, from a thread.
+class FakeServer {
+ public:
+  struct Reply {
+    std::string raw;   // full HTTP response
+    int delay_ms = 0;  // wait before answering (the client may give up first)
+  };
+  explicit FakeServer(std::vector<Reply> replies) : replies_(std::move(replies)) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    int one = 1;
+    ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    addr.sin_port = 0;
+    EXPECT_EQ(::bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)), 0);
+    EXPECT_EQ(::listen(fd_, 4), 0);
+    socklen_t len = sizeof(addr);
+    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
+    port_ = ntohs(addr.sin_port);
+    thread_ = std::thread([this] { Serve(); });
+  }
+  ~FakeServer() {
+    stop_ = true;
+    thread_.join();
+    ::close(fd_);
+  }
+  std::string url() const { return "http://127.0.0.1:" + std::to_string(port_) + "/v1"; }
+  std::vector<std::string> requests() const {
+    std::lock_guard<std::mutex> lock(mu_);
+    return requests_;
+  }
+
+ private:
+  void Serve() {
+    for (const Reply& r : replies_) {
+      int client = -1;
+      while (!stop_ && client < 0) {
+        pollfd p{fd_, POLLIN, 0};
+        if (::poll(&p, 1, 20) > 0) client = ::accept(fd_, nullptr, nullptr);
+      }
+      if (client < 0) return;
+      std::string req = ReadRequest(client);
+      {
+        std::lock_guard<std::mutex> lock(mu_);
+        requests_.push_back(req);
+      }
+      auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(r.delay_ms);
+      while (!stop_ && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      std::size_t sent = 0;
+      while (sent < r.raw.size()) {
+        ssize_t n = ::send(client, r.raw.data() + sent, r.raw.size() - sent, MSG_NOSIGNAL);
+        if (n <= 0) break;
+        sent += static_cast<std::size_t>(n);
+      }
+      ::close(client);
+    }
+  }
+  static std::string ReadRequest(int fd) {
+    std::string raw;
+    char buf[4096];
+    for (;;) {
+      pollfd p{fd, POLLIN, 0};
+      if (::poll(&p, 1, 2000) <= 0) break;
+      ssize_t n = ::recv(fd, buf, sizeof(buf), 0);
+      if (n <= 0) break;
+      raw.append(buf, static_cast<std::size_t>(n));
+      std::size_t end = raw.find("\r\n\r\n");
+      if (end == std::string::npos) continue;
+      std::size_t cl = raw.find("Content-Length: ");
+      std::size_t length = cl == std::string::npos ? 0 : std::stoul(raw.substr(cl + 16));
+      if (raw.size() >= end + 4 + length) break;
+    }
+    return raw;
+  }
+  std::vector<Reply> replies_;
+  int fd_ = -1;
+  int port_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  mutable std::mutex mu_;
+  std::vector<std::string> requests_;
+};
+
+class LlmTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { config_ = new PlannerConfig(LoadPlannerConfig()); }
+  static void TearDownTestSuite() {
+    delete config_;
+    config_ = nullptr;
+  }
+  StoryPlanner Planner(const std::string& endpoint, double timeout_s = 5.0) const {
+    PlannerConfig c = *config_;
+    c.llm.endpoint = endpoint;
+    c.llm.model = "test-model";
+    c.llm.api_key = "secret";
+    c.llm.timeout_s = timeout_s;
+    return StoryPlanner(c);
+  }
+  static PlannerConfig* config_;
+};
+PlannerConfig* LlmTest::config_ = nullptr;
+
+const char* kTheme = "A person is happy at first, then gets depressed";
+
+TEST_F(LlmTest, ValidReplyIsUsed) {
+  FakeServer server({{Recorded("valid_reply.json")}});
+  StoryPlanner planner = Planner(server.url());
+  ScriptResult r = planner.ScriptForTheme(kTheme, Difficulty::kMid, 7);
+  EXPECT_EQ(r.planner, "llm:test-model");
+  EXPECT_TRUE(r.note.empty()) << r.note;
+  EXPECT_EQ(r.script.script_ids, (std::vector<std::string>{"bedroom_happy_1", "living_room_sad_1"}));
+  EXPECT_EQ(r.script.EmotionSequence(), (std::vector<std::string>{"happy", "sad"}));
+  EXPECT_THAT(r.script.narrative, HasSubstr("Bursting with joy"));
+  EXPECT_TRUE(CheckGrammar(r.script.keyframes).empty());
+  // What the client sent: the chat-completions path, the key, the model and both prompts.
+  std::vector<std::string> reqs = server.requests();
+  ASSERT_EQ(reqs.size(), 1u);
+  EXPECT_THAT(reqs[0], HasSubstr("POST /v1/chat/completions HTTP/1.1"));
+  EXPECT_THAT(reqs[0], HasSubstr("Authorization: Bearer secret"));
+  nlohmann::json body = nlohmann::json::parse(reqs[0].substr(reqs[0].find("\r\n\r\n") + 4));
+  EXPECT_EQ(body["model"], "test-model");
+  EXPECT_EQ(body["seed"], 7);
+  EXPECT_EQ(body["messages"][0]["role"], "system");
+  EXPECT_THAT(body["messages"][1]["content"].get<std::string>(), HasSubstr(kTheme));
+  EXPECT_THAT(body["messages"][1]["content"].get<std::string>(), HasSubstr("\"id\":\"bedroom_happy_1\""));
+  EXPECT_EQ(body["response_format"]["type"], "json_object");
+  // The plan keeps the LLM's narrative.
+  Plan plan = planner.Place(r, BuiltinLayoutDatabase());
+  EXPECT_EQ(plan.planner, "llm:test-model");
+  EXPECT_THAT(plan.narrative, HasSubstr("Bursting with joy"));
+}
+
+TEST_F(LlmTest, FencedReplyWithANewShortScriptIsValidated) {
+  FakeServer server({{Recorded("fenced_custom_reply.json")}});
+  ScriptResult r = Planner(server.url()).ScriptForTheme(kTheme, Difficulty::kMid, 1);
+  EXPECT_EQ(r.planner, "llm:test-model") << r.note;
+  ASSERT_GE(r.script.keyframes.size(), 3u);
+  EXPECT_EQ(r.script.keyframes[0].furniture, "bookshelf");  // alias resolved by the loader
+  EXPECT_EQ(r.script.keyframes[1].style, "left_high");
+  EXPECT_EQ(r.script.script_ids.back(), "library_sad_1");
+  EXPECT_FALSE(r.script.narrative.empty());  // none given: the template writes one
+}
+
+TEST_F(LlmTest, MalformedRepliesFallBack) {
+  struct Case {
+    std::string reply;
+    std::string reason;
+  };
+  std::vector<Case> cases = {
+      {Recorded("single_quotes_reply.json"), "single quotes"},
+      {Recorded("bad_skill_reply.json"), "scripts[0]: field 'keyframes[1].skill'"},
+      {Recorded("unknown_id_reply.json"), "field 'scripts[1]'"},
+      {Recorded("too_short_reply.json"), "between 3 and 4 interactions"},
+      {Recorded("not_a_completion.json"), "choices[0].message.content"},
+      {"HTTP/1.1 500 Internal Server Error\r\nContent-Length: 5\r\n\r\noops!", "HTTP 500"},
+      {"garbage that is not http\r\n\r\n", "not an HTTP response"},
+  };
+  StoryPlanner fallback_reference = Planner("");
+  ScriptResult embedded = fallback_reference.EmbeddedScript(kTheme, Difficulty::kMid, 2);
+  for (const Case& c : cases) {
+    FakeServer server({{c.reply}});
+    ScriptResult r = Planner(server.url()).ScriptForTheme(kTheme, Difficulty::kMid, 2);
+    EXPECT_EQ(r.planner, "embedded") << c.reason;
+    EXPECT_THAT(r.note, HasSubstr("fell back to the embedded planner"));
+    EXPECT_THAT(r.note, HasSubstr(c.reason));
+    EXPECT_EQ(KeyframesToJson(r.script.keyframes).dump(), KeyframesToJson(embedded.script.keyframes).dump());
+  }
+}
+
+TEST_F(LlmTest, TimeOutFallsBackQuickly) {
+  FakeServer server({{Recorded("valid_reply.json"), 1500}});
+  auto start = std::chrono::steady_clock::now();
+  ScriptResult r = Planner(server.url(), 0.3).ScriptForTheme(kTheme, Difficulty::kSimple, 4);
+  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.planner, "embedded");
+  EXPECT_THAT(r.note, HasSubstr("timed out"));
+  EXPECT_LT(elapsed, 1.2);
+  EXPECT_EQ(r.script.Interactions(), 2);
+}
+
+TEST_F(LlmTest, NoEndpointOrUnreachableServerFallsBack) {
+  ScriptResult none = Planner("").ScriptForTheme(kTheme, Difficulty::kMid, 1);
+  EXPECT_EQ(none.planner, "embedded");
+  EXPECT_THAT(none.note, HasSubstr("no LLM endpoint configured"));
+  int port;
+  {
+    FakeServer closed({});
+    port = std::stoi(closed.url().substr(17, 5));
+  }  // nothing listens there any more
+  ScriptResult refused =
+      Planner("http://127.0.0.1:" + std::to_string(port) + "/v1").ScriptForTheme(kTheme, Difficulty::kMid, 1);
+  EXPECT_EQ(refused.planner, "embedded");
+  EXPECT_THAT(refused.note, HasSubstr("cannot connect"));
+  ScriptResult https = Planner("https://api.example.com/v1").ScriptForTheme(kTheme, Difficulty::kMid, 1);
+  EXPECT_THAT(https.note, HasSubstr("https is not supported"));
+}
+
+TEST(HttpClientTest, DecodesChunkedRepliesAndParsesUrls) {
+  std::string body = ReadFile(sims::testing::TestData("planner/llm/valid_reply.json"));
+  std::string chunked = "HTTP/1.1 200 OK\r\nTransfer-Encoding: chunked\r\n\r\n";
+  for (std::size_t pos = 0; pos < body.size(); pos += 100) {
+    std::string piece = body.substr(pos, 100);
+    std::stringstream hex;
+    hex << std::hex << piece.size();
+    chunked += hex.str() + "\r\n" + piece + "\r\n";
+  }
+  chunked += "0\r\n\r\n";
+  FakeServer server({{chunked}});
+  HttpResponse r = HttpPost(server.url() + "/chat/completions", {}, "{}", 5.0);
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body, body);
+
+  HttpUrl u = ParseHttpUrl("http://localhost:8080/v1/chat/completions?x=1");
+  EXPECT_EQ(u.host, "localhost");
+  EXPECT_EQ(u.port, 8080);
+  EXPECT_EQ(u.path, "/v1/chat/completions?x=1");
+  EXPECT_EQ(ParseHttpUrl("http://[::1]:9000/").host, "::1");
+  EXPECT_EQ(ChatCompletionsUrl("http://h:1/v1/"), "http://h:1/v1/chat/completions");
+  EXPECT_EQ(ChatCompletionsUrl("http://h:1"), "http://h:1/v1/chat/completions");
+  EXPECT_EQ(ChatCompletionsUrl("http://h/api/chat/completions"), "http://h/api/chat/completions");
+  EXPECT_THROW(ParseHttpUrl("ftp://h"), LlmError);
+  EXPECT_THROW(ParseHttpUrl("http://h:99999/"), LlmError);
+  EXPECT_EQ(StripToJson("Sure!\n```json\n{\"a\": 1}\n```\n"), "{\"a\": 1}");
+}
+
+}  // namespace
+}  // namespace sims::planner
