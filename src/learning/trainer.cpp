@@ -520,7 +520,7 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
   }
 }
 
-void Trainer::ExportPolicy(const std::filesystem::path& path) const {
+void Trainer::ExportPolicy(const std::filesystem::path& path, const std::string& extra_json) const {
   const auto& m = *impl_;
   torch::serialize::OutputArchive archive, ac, on;
   m.ac->save(ac);
@@ -535,13 +535,14 @@ void Trainer::ExportPolicy(const std::filesystem::path& path) const {
                     {"size", s.size},
                     {"rows", s.rows},
                     {"cols", s.cols}});
-  const nlohmann::json meta = {{"format", "sims-policy-1"},
-                               {"obs_dim", m.obs_dim},
-                               {"action_dim", m.act_dim},
-                               {"segments", segs},
-                               {"network", ConfigToJson(m.cfg.network)},
-                               {"obs_clip", m.cfg.ppo.obs_clip},
-                               {"iteration", m.iteration}};
+  nlohmann::json meta = {{"format", "sims-policy-1"},
+                         {"obs_dim", m.obs_dim},
+                         {"action_dim", m.act_dim},
+                         {"segments", segs},
+                         {"network", ConfigToJson(m.cfg.network)},
+                         {"obs_clip", m.cfg.ppo.obs_clip},
+                         {"iteration", m.iteration}};
+  if (!extra_json.empty()) meta["extra"] = nlohmann::json::parse(extra_json);
   WriteTensor(archive, "metadata", StringTensor(meta.dump()));
   SaveArchiveAtomically(archive, path);
 }

@@ -59,8 +59,9 @@ class Trainer {
   void SaveCheckpoint(const std::filesystem::path& path) const;
   /// Restores SaveCheckpoint() output; throws sims::Error naming the file on mismatch.
   void LoadCheckpoint(const std::filesystem::path& path);
-  /// Writes the small inference file (actor, critic, observation normaliser, layout).
-  void ExportPolicy(const std::filesystem::path& path) const;
+  /// Writes the small inference file (actor, critic, observation normaliser, layout);
+  /// `extra_json` (an object, e.g. the skill and env configs) is stored under "extra".
+  void ExportPolicy(const std::filesystem::path& path, const std::string& extra_json = "") const;
   /// All network parameters flattened (tests compare runs with it).
   std::vector<float> FlatParameters() const;
   /// Deterministic actions (the Gaussian mean) for observations [n, obs_dim].

@@ -1,0 +1,28 @@
+// DemoSource over the motion library: AMP windows of the clips and their style embeddings.
+#pragma once
+
+#include <memory>
+
+#include "sims/learning/vec_env.h"
+#include "sims/motion/motion_library.h"
+#include "sims/task/styles.h"
+
+namespace sims::learning {
+
+/// Demo windows from a MotionLibrary (style id = clip index).
+class MotionDemoSource : public DemoSource {
+ public:
+  /// `styles` may be null (unconditional AMP).
+  MotionDemoSource(std::shared_ptr<const motion::MotionLibrary> library,
+                   std::shared_ptr<const task::StyleTable> styles, int threads = 1);
+  int amp_obs_dim() const override;
+  void Sample(int n, Rng& rng, float* amp_out, int* style_out) const override;
+  const std::vector<Eigen::VectorXf>& style_embeddings() const override { return z_; }
+
+ private:
+  std::shared_ptr<const motion::MotionLibrary> library_;
+  std::vector<Eigen::VectorXf> z_;
+  int threads_;
+};
+
+}  // namespace sims::learning

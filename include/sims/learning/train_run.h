@@ -1,0 +1,51 @@
+// The train_policy job: config → skill + env + learner, the iteration loop with progress,
+// CSV log, HTML report, atomic checkpoints every K iterations and resume.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "sims/learning/config.h"
+#include "sims/sim/env.h"
+#include "sims/task/skill.h"
+
+namespace sims::learning {
+
+/// Everything train_policy reads from configs/skills/<skill>.json.
+struct TrainConfig {
+  sim::EnvConfig env;         ///< Batched environment.
+  task::SkillConfig skill;    ///< Skill and its motion data.
+  LearnerConfig learner;      ///< PPO + AMP.
+  int iterations = 1000;      ///< Total iterations of the run.
+  int checkpoint_every = 25;  ///< Checkpoint + policy + report every K iterations.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(env));
+    a->Visit(SIMS_NVP(skill));
+    a->Visit(SIMS_NVP(learner));
+    a->Visit(SIMS_NVP(iterations));
+    a->Visit(SIMS_NVP(checkpoint_every));
+  }
+  /// Checks counts.
+  void Validate() const;
+};
+
+/// Command-line overrides.
+struct TrainOptions {
+  std::filesystem::path out_dir = "runs/train";  ///< Outputs (config, log, checkpoints).
+  bool resume = false;                           ///< Continue from out_dir/checkpoint.pt.
+  std::optional<int> iterations;                 ///< Override TrainConfig::iterations.
+  std::optional<uint64_t> seed;                  ///< Override env and learner seeds.
+  std::optional<std::string> skill;              ///< Must match the config's skill if set.
+};
+
+/// Runs (or resumes) training; returns the final iteration count.
+int64_t RunTraining(TrainConfig config, const TrainOptions& options);
+
+/// Writes an HTML page with one SVG line plot per numeric CSV column.
+void WriteTrainingReport(const std::filesystem::path& csv, const std::filesystem::path& html,
+                         const std::string& title);
+
+}  // namespace sims::learning

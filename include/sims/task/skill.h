@@ -1,0 +1,185 @@
+// Skills are environment task hooks with a shared observation layout, so any skill's policy
+// reads the same kinds of inputs:
+//   [contact goal: 15 joints × (heading-local target − joint position, valid mask) = 60]
+//   [egocentric heightmap: H·W heights relative to the root]
+//   [style embedding z: 64, zero when the skill is not text-conditioned]
+// A skill fills per-env goals; the base class turns them into observations, handles the
+// hybrid reference-state initialisation from the motion library, style ids for conditional
+// AMP and bit-exact state snapshots. Walk (walk.h) is the fully commented reference skill.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sims/core/config.h"
+#include "sims/motion/motion_library.h"
+#include "sims/scene/height_grid.h"
+#include "sims/scene/ray_caster.h"
+#include "sims/scene/scene.h"
+#include "sims/sim/env.h"
+#include "sims/task/styles.h"
+
+namespace sims::task {
+
+inline constexpr int kContactGoalDim = sim::kNumContactJoints * 4;  ///< 60.
+
+/// Which clips feed reference-state init and the AMP demo buffer.
+struct MotionDataConfig {
+  std::string manifest;               ///< Manifest path (relative to the project root ok).
+  std::vector<std::string> skills;    ///< Clip skill labels to keep (empty = all).
+  std::vector<std::string> emotions;  ///< Clip emotions to keep (empty = all).
+  bool mirror = true;                 ///< Add left–right mirrored clips.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(manifest));
+    a->Visit(SIMS_NVP(skills));
+    a->Visit(SIMS_NVP(emotions));
+    a->Visit(SIMS_NVP(mirror));
+  }
+};
+
+/// Settings shared by all skills (each skill reads the fields it needs).
+struct SkillConfig {
+  std::string skill = "walk";                ///< Registry name.
+  MotionDataConfig motion;                   ///< Demonstrations.
+  scene::HeightmapConfig heightmap;          ///< Egocentric heightmap layout (16×16, 0.1 m).
+  bool style_conditioned = false;            ///< Put the clip's z in the observation.
+  double reference_init_prob = 0.5;          ///< Hybrid init: P(reference state).
+  double reference_init_max_fraction = 1.0;  ///< Reference times in [0, f·duration].
+  // Walk.
+  double target_speed = 1.0;               ///< v* (m/s).
+  double target_min_distance = 0.5;        ///< Walk targets at least this far (m).
+  double target_max_distance = 5.0;        ///< ... and at most this far (m).
+  double walk_success_radius = 0.5;        ///< Reached when within this (m, xy).
+  int success_hold_steps = 15;             ///< Steps success must hold before switching.
+  bool resample_target_on_success = true;  ///< New walk target after a held success.
+  // Object skills.
+  std::vector<std::string> object_categories;  ///< Procedural categories to train on.
+  int num_objects = 16;                        ///< Objects in the training ground.
+  bool held_out_objects = false;               ///< Held-out dimension ranges (evaluation).
+  double spawn_min_distance = 1.0;             ///< Character spawn distance from the object (m).
+  double spawn_max_distance = 4.0;             ///< ... (m).
+  double contact_success_threshold = 0.2;      ///< Sit/reach 0.20 m, lie 0.30 m.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(skill));
+    a->Visit(SIMS_NVP(motion));
+    a->Visit(SIMS_NVP(heightmap));
+    a->Visit(SIMS_NVP(style_conditioned));
+    a->Visit(SIMS_NVP(reference_init_prob));
+    a->Visit(SIMS_NVP(reference_init_max_fraction));
+    a->Visit(SIMS_NVP(target_speed));
+    a->Visit(SIMS_NVP(target_min_distance));
+    a->Visit(SIMS_NVP(target_max_distance));
+    a->Visit(SIMS_NVP(walk_success_radius));
+    a->Visit(SIMS_NVP(success_hold_steps));
+    a->Visit(SIMS_NVP(resample_target_on_success));
+    a->Visit(SIMS_NVP(object_categories));
+    a->Visit(SIMS_NVP(num_objects));
+    a->Visit(SIMS_NVP(held_out_objects));
+    a->Visit(SIMS_NVP(spawn_min_distance));
+    a->Visit(SIMS_NVP(spawn_max_distance));
+    a->Visit(SIMS_NVP(contact_success_threshold));
+  }
+  /// Checks ranges.
+  void Validate() const;
+};
+
+/// Everything a skill instance shares with the environment.
+struct SkillContext {
+  std::shared_ptr<const sim::Humanoid> humanoid;              ///< Model incl. the scene.
+  std::shared_ptr<const scene::Scene> scene;                  ///< The scene the env simulates.
+  std::shared_ptr<const scene::SceneHeightGrid> height_grid;  ///< Precomputed heights.
+  std::shared_ptr<const scene::RayCaster> ray_caster;         ///< Direct queries (free space).
+  std::shared_ptr<const motion::MotionLibrary> motions;       ///< Demonstrations (may be null).
+  std::shared_ptr<const StyleTable> styles;                   ///< z per clip (may be null).
+  int num_envs = 1;                                           ///< Per-env state size.
+};
+
+/// Base class of all skills (see the file comment).
+class Skill : public sim::TaskHook {
+ public:
+  /// Allocates per-env state for ctx.num_envs environments.
+  Skill(const SkillConfig& config, const SkillContext& context);
+  ~Skill() override;
+
+  /// Registry name.
+  virtual std::string name() const = 0;
+
+  int obs_dim() const override;
+  std::vector<sim::ObsSegment> obs_segments() const override;
+  void SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) override;
+  void Observe(const sim::EnvView& view, float* out) const override;
+  int style_id(int env_id) const override { return style_[env_id]; }
+  std::vector<double> SaveEnvState(int env_id) const override;
+  void LoadEnvState(int env_id, const std::vector<double>& state) override;
+
+  /// The goal of contact joint j in env i (world frame) and whether it is active.
+  const Eigen::Vector3d& goal(int env_id, int joint) const { return goals_[env_id][joint]; }
+  /// Bitmask of active contact joints of env i.
+  uint32_t goal_mask(int env_id) const { return mask_[env_id]; }
+  /// Sets/clears the goal of contact joint j (world frame).
+  void SetGoal(int env_id, int joint, const Eigen::Vector3d& target);
+  /// Clears all goals of env i.
+  void ClearGoals(int env_id);
+  /// Forces the style of env i (FSM: z from a caption); −1 = none.
+  void SetStyle(int env_id, int style);
+  /// The configuration.
+  const SkillConfig& config() const { return config_; }
+  /// The context.
+  const SkillContext& context() const { return context_; }
+
+ protected:
+  /// Skill-specific per-env numbers to snapshot (appended after the base state).
+  virtual std::vector<double> SaveSkillState(int env_id) const;
+  /// Restores SaveSkillState() output.
+  virtual void LoadSkillState(int env_id, const double* data, size_t size);
+  /// Clips eligible for reference init of this skill (default: all library clips).
+  virtual const std::vector<int>& ReferenceClips() const { return reference_clips_; }
+
+  SkillConfig config_;
+  SkillContext context_;
+  std::unique_ptr<scene::HeightmapSampler> heightmap_;
+  std::vector<std::array<Eigen::Vector3d, sim::kNumContactJoints>> goals_;
+  std::vector<uint32_t> mask_;
+  std::vector<int> style_;
+  std::vector<int> reference_clips_;
+};
+
+/// A registered skill.
+struct SkillInfo {
+  std::string name;         ///< Registry key (walk, sit, lie, reach, getup, unified).
+  std::string description;  ///< One line for --help.
+  /// Builds the scene the skill trains in (empty floor for walk, procedural objects else).
+  std::function<scene::Scene(const SkillConfig&, Rng&)> build_scene;
+  /// Creates the skill.
+  std::function<std::shared_ptr<Skill>(const SkillConfig&, const SkillContext&)> create;
+};
+
+/// The explicit skill registry (mujoco_mpc style GetTasks()).
+const std::vector<SkillInfo>& GetSkills();
+/// Registry lookup; throws sims::Error listing the known names.
+const SkillInfo& FindSkill(const std::string& name);
+
+/// A ready-to-run skill: model, scene, grids, motions and the hook.
+struct SkillSetup {
+  SkillContext context;          ///< Shared pieces.
+  std::shared_ptr<Skill> skill;  ///< The task hook.
+};
+
+/// Builds the skill's scene, compiles the MuJoCo model, casts the height grid, loads the
+/// motion library (if a manifest is set) and creates the skill for `num_envs` environments.
+/// `scene` overrides the skill's own training scene when given.
+SkillSetup CreateSkill(const SkillConfig& config, int num_envs, uint64_t seed,
+                       std::shared_ptr<const scene::Scene> scene = nullptr);
+
+}  // namespace sims::task

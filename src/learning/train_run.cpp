@@ -1,0 +1,231 @@
+#include "sims/learning/train_run.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "sims/core/error.h"
+#include "sims/core/log.h"
+#include "sims/core/progress.h"
+#include "sims/learning/motion_demo.h"
+#include "sims/learning/sim_vec_env.h"
+#include "sims/learning/trainer.h"
+
+namespace sims::learning {
+
+void TrainConfig::Validate() const {
+  Require(iterations > 0, "iterations", "a positive count");
+  Require(checkpoint_every > 0, "checkpoint_every", "a positive count");
+}
+
+namespace {
+
+const std::vector<std::string>& CsvColumns() {
+  static const std::vector<std::string> cols = {
+      "iteration",      "samples",          "task_reward",       "style_reward",
+      "total_reward",   "episode_return",   "episode_length",    "episodes",
+      "success_rate",   "fall_rate",        "actor_loss",        "critic_loss",
+      "bounds_loss",    "disc_loss",        "grad_penalty",      "disc_acc_demo",
+      "disc_acc_agent", "clip_fraction",    "env_samples_per_s", "train_samples_per_s",
+      "update_gflops",  "iteration_seconds"};
+  return cols;
+}
+
+std::string CsvRow(const IterationStats& s) {
+  const double v[] = {static_cast<double>(s.iteration),
+                      static_cast<double>(s.samples),
+                      s.task_reward,
+                      s.style_reward,
+                      s.total_reward,
+                      s.episode_return,
+                      s.episode_length,
+                      static_cast<double>(s.episodes),
+                      s.success_rate,
+                      s.fall_rate,
+                      s.actor_loss,
+                      s.critic_loss,
+                      s.bounds_loss,
+                      s.disc_loss,
+                      s.grad_penalty,
+                      s.disc_acc_demo,
+                      s.disc_acc_agent,
+                      s.clip_fraction,
+                      s.env_samples_per_s,
+                      s.train_samples_per_s,
+                      s.update_gflop / std::max(s.update_seconds, 1e-9),
+                      s.iteration_seconds};
+  std::ostringstream out;
+  out.precision(7);
+  for (size_t i = 0; i < std::size(v); ++i) out << (i ? "," : "") << v[i];
+  return out.str();
+}
+
+// After a crash the log may hold rows past the last checkpoint; drop them so the resumed run
+// appends exactly once per iteration.
+void TruncateLog(const std::filesystem::path& csv, int64_t last_iteration) {
+  std::ifstream in(csv);
+  if (!in) return;
+  std::string line, kept;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header) {
+      kept += line + "\n";
+      header = false;
+      continue;
+    }
+    if (std::stoll(line.substr(0, line.find(','))) <= last_iteration) kept += line + "\n";
+  }
+  WriteFileAtomic(csv, kept);
+}
+
+std::string Svg(const std::string& name, const std::vector<double>& x,
+                const std::vector<double>& y) {
+  const double w = 440, h = 180, left = 60, top = 24;
+  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(y[i])) continue;
+    xmin = std::min(xmin, x[i]), xmax = std::max(xmax, x[i]);
+    ymin = std::min(ymin, y[i]), ymax = std::max(ymax, y[i]);
+  }
+  std::ostringstream s;
+  s.precision(5);
+  s << "<figure><svg xmlns='http://www.w3.org/2000/svg' width='" << w + left + 20 << "' height='"
+    << h + top + 40 << "' data-series='" << name << "'>";
+  s << "<rect x='" << left << "' y='" << top << "' width='" << w << "' height='" << h
+    << "' fill='#fafafa' stroke='#999'/>";
+  s << "<text x='" << left << "' y='16' font-size='13' font-family='sans-serif'>" << name
+    << "</text>";
+  if (xmin <= xmax) {
+    if (xmax == xmin) xmax = xmin + 1;
+    if (ymax == ymin) ymax = ymin + 1e-9 + std::abs(ymin) * 1e-3;
+    s << "<polyline class='series' fill='none' stroke='#1f77b4' stroke-width='1.5' points='";
+    for (size_t i = 0; i < x.size(); ++i) {
+      if (!std::isfinite(y[i])) continue;
+      s << left + (x[i] - xmin) / (xmax - xmin) * w << ","
+        << top + h - (y[i] - ymin) / (ymax - ymin) * h << " ";
+    }
+    s << "'/>";
+    s << "<text x='2' y='" << top + 10 << "' font-size='11' font-family='sans-serif'>" << ymax
+      << "</text>";
+    s << "<text x='2' y='" << top + h << "' font-size='11' font-family='sans-serif'>" << ymin
+      << "</text>";
+    s << "<text x='" << left << "' y='" << top + h + 16
+      << "' font-size='11' font-family='sans-serif'>" << xmin << "</text>";
+    s << "<text x='" << left + w - 40 << "' y='" << top + h + 16
+      << "' font-size='11' font-family='sans-serif'>" << xmax << " (iteration)</text>";
+  }
+  s << "</svg></figure>\n";
+  return s.str();
+}
+
+}  // namespace
+
+void WriteTrainingReport(const std::filesystem::path& csv, const std::filesystem::path& html,
+                         const std::string& title) {
+  std::ifstream in(csv);
+  if (!in) ThrowInputError(csv.string(), "", "a training log (CSV)", "missing");
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream hs(line);
+  for (std::string c; std::getline(hs, c, ',');) names.push_back(c);
+  std::vector<std::vector<double>> cols(names.size());
+  while (std::getline(in, line)) {
+    std::stringstream ls(line);
+    size_t k = 0;
+    for (std::string c; std::getline(ls, c, ',') && k < cols.size(); ++k)
+      cols[k].push_back(c == "nan" || c == "-nan" ? std::nan("") : std::stod(c));
+  }
+  std::ostringstream page;
+  page << "<!doctype html><html><head><meta charset='utf-8'><title>" << title
+       << "</title><style>body{font-family:sans-serif}figure{display:inline-block;margin:8px}</"
+          "style>"
+          "</head><body><h1>"
+       << title << "</h1><p>" << (cols.empty() ? 0 : cols[0].size())
+       << " iterations. One plot per column of log.csv.</p>\n";
+  for (size_t k = 1; k < names.size(); ++k) page << Svg(names[k], cols[0], cols[k]);
+  page << "</body></html>\n";
+  WriteFileAtomic(html, page.str());
+}
+
+int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
+  const auto& out = options.out_dir;
+  const auto config_path = out / "config.json";
+  const auto ckpt_path = out / "checkpoint.pt";
+  const auto csv_path = out / "log.csv";
+  if (options.resume) {
+    if (!std::filesystem::exists(ckpt_path))
+      ThrowInputError(ckpt_path.string(), "", "a checkpoint to resume from (--resume)", "none");
+    // Resume with exactly the configuration the run started with.
+    config = LoadConfig<TrainConfig>(config_path);
+  } else {
+    if (options.seed) {
+      config.env.seed = *options.seed;
+      config.learner.seed = *options.seed;
+    }
+  }
+  if (options.skill && *options.skill != config.skill.skill)
+    ThrowInputError("--skill", "skill", "the skill of the config ('" + config.skill.skill + "')",
+                    "'" + *options.skill + "'");
+  if (options.iterations) config.iterations = *options.iterations;
+  ValidateConfig(config, config_path.string());
+  std::filesystem::create_directories(out);
+  if (!options.resume) SaveConfig(config_path, config);
+
+  auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
+  auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, config.env, setup.skill);
+  auto vec = std::make_shared<SimVecEnv>(env);
+  std::shared_ptr<const DemoSource> demo;
+  if (config.learner.amp.enabled) {
+    if (!setup.context.motions)
+      ThrowInputError(config_path.string(), "skill.motion.manifest",
+                      "a motion manifest when learner.amp.enabled is true", "none");
+    demo = std::make_shared<MotionDemoSource>(
+        setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr);
+  }
+  Trainer trainer(vec, demo, config.learner);
+  if (options.resume) {
+    trainer.LoadCheckpoint(ckpt_path);
+    TruncateLog(csv_path, trainer.iteration());
+    spdlog::info("resumed {} at iteration {}", out.string(), trainer.iteration());
+  } else {
+    std::string header;
+    for (const auto& c : CsvColumns()) header += (header.empty() ? "" : ",") + c;
+    WriteFileAtomic(csv_path, header + "\n");
+  }
+  const nlohmann::json extra = {{"skill", ConfigToJson(config.skill)},
+                                {"env", ConfigToJson(config.env)}};
+  auto save_all = [&]() {
+    trainer.SaveCheckpoint(ckpt_path);
+    trainer.ExportPolicy(out / "policy.pt", extra.dump());
+    WriteTrainingReport(csv_path, out / "report.html", "train_policy " + config.skill.skill);
+  };
+
+  ProgressReporter progress("train " + config.skill.skill, config.iterations, "it", 10.0);
+  const int64_t start = trainer.iteration();
+  std::ofstream csv(csv_path, std::ios::app);
+  int64_t samples_at_start = -1;  // samples/s counts this process only (resume-safe)
+  for (int64_t it = start; it < config.iterations; ++it) {
+    const IterationStats s = trainer.RunIteration();
+    if (samples_at_start < 0)
+      samples_at_start =
+          s.samples - static_cast<int64_t>(config.learner.ppo.horizon) * config.env.num_envs;
+    csv << CsvRow(s) << "\n";
+    csv.flush();
+    char extra_text[200];
+    std::snprintf(
+        extra_text, sizeof(extra_text),
+        "reward %.3f (task %.3f style %.3f) success %.2f falls %.2f ep_len %.0f, %.0f samples/s",
+        s.total_reward, s.task_reward, s.style_reward, s.success_rate, s.fall_rate,
+        s.episode_length,
+        static_cast<double>(s.samples - samples_at_start) /
+            std::max(progress.ElapsedSeconds(), 1e-9));
+    progress.Update(it + 1, extra_text);
+    if ((it + 1) % config.checkpoint_every == 0) save_all();
+  }
+  save_all();
+  progress.Finish();
+  return trainer.iteration();
+}
+
+}  // namespace sims::learning

@@ -1,0 +1,196 @@
+#include "sims/task/skill.h"
+
+#include <cmath>
+
+#include "sims/core/error.h"
+#include "sims/core/log.h"
+#include "sims/core/paths.h"
+#include "sims/sim/features.h"
+#include "sims/sim/scene_physics.h"
+#include "sims/task/walk.h"
+
+namespace sims::task {
+
+void SkillConfig::Validate() const {
+  Require(reference_init_prob >= 0 && reference_init_prob <= 1, "reference_init_prob",
+          "a probability in [0, 1]");
+  Require(reference_init_max_fraction > 0 && reference_init_max_fraction <= 1,
+          "reference_init_max_fraction", "a fraction in (0, 1]");
+  Require(target_speed >= 0, "target_speed", "a non-negative speed (m/s)");
+  Require(target_min_distance >= 0 && target_max_distance >= target_min_distance,
+          "target_max_distance", "a distance ≥ target_min_distance ≥ 0");
+  Require(walk_success_radius > 0, "walk_success_radius", "a positive radius (m)");
+  Require(success_hold_steps >= 1, "success_hold_steps", "at least 1 step");
+  Require(num_objects >= 0, "num_objects", "a non-negative count");
+  Require(spawn_max_distance >= spawn_min_distance && spawn_min_distance >= 0, "spawn_max_distance",
+          "a distance ≥ spawn_min_distance ≥ 0");
+  Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
+}
+
+Skill::Skill(const SkillConfig& config, const SkillContext& context)
+    : config_(config), context_(context) {
+  SIMS_CHECK(context_.humanoid && context_.height_grid && context_.num_envs > 0);
+  heightmap_ = std::make_unique<scene::HeightmapSampler>(context_.height_grid, config_.heightmap);
+  goals_.resize(context_.num_envs);
+  for (auto& g : goals_) g.fill(Eigen::Vector3d::Zero());
+  mask_.assign(context_.num_envs, 0);
+  style_.assign(context_.num_envs, -1);
+  if (context_.motions)
+    for (int c = 0; c < context_.motions->num_clips(); ++c) reference_clips_.push_back(c);
+}
+
+Skill::~Skill() = default;
+
+int Skill::obs_dim() const { return kContactGoalDim + heightmap_->size() + kStyleDim; }
+
+std::vector<sim::ObsSegment> Skill::obs_segments() const {
+  sim::ObsSegment goal{"contact_goal", sim::ObsSegment::Kind::kVector, 0, kContactGoalDim, 0, 0};
+  sim::ObsSegment hm{
+      "heightmap",        sim::ObsSegment::Kind::kHeightmap, kContactGoalDim,
+      heightmap_->size(), config_.heightmap.size_y,          config_.heightmap.size_x};
+  sim::ObsSegment z{
+      "z", sim::ObsSegment::Kind::kStyle, kContactGoalDim + heightmap_->size(), kStyleDim, 0, 0};
+  return {goal, hm, z};
+}
+
+void Skill::SetGoal(int env_id, int joint, const Eigen::Vector3d& target) {
+  goals_[env_id][joint] = target;
+  mask_[env_id] |= 1u << joint;
+}
+
+void Skill::ClearGoals(int env_id) { mask_[env_id] = 0; }
+
+void Skill::SetStyle(int env_id, int style) { style_[env_id] = style; }
+
+void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
+  const auto& clips = ReferenceClips();
+  const auto* lib = context_.motions.get();
+  if (lib && !clips.empty() && rng.Bernoulli(config_.reference_init_prob)) {
+    // Reference-state init: a clip of this skill at a random time, placed where the env's
+    // default put the character (position and heading), with its AMP history.
+    const int clip = clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+    const double t = lib->SampleTime(clip, rng, config_.reference_init_max_fraction);
+    motion::ReferenceState ref = lib->StateAt(clip, t);
+    const double yaw =
+        sim::HeadingAngle(init->pose.root_rot) - sim::HeadingAngle(ref.pose.root_rot);
+    const Eigen::Quaterniond dq(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+    const Eigen::Vector3d anchor(ref.pose.root_pos.x(), ref.pose.root_pos.y(), 0);
+    const Eigen::Vector3d place(init->pose.root_pos.x(), init->pose.root_pos.y(), 0);
+    auto move = [&](sim::HumanoidPose p) {
+      p.root_pos = place + dq * (p.root_pos - anchor);
+      p.root_rot = dq * p.root_rot;
+      p.root_lin_vel = dq * p.root_lin_vel;
+      p.root_ang_vel = dq * p.root_ang_vel;
+      return p;
+    };
+    init->pose = move(ref.pose);
+    init->history.clear();
+    for (const auto& h : ref.history) init->history.push_back(move(h));
+    init->reference = true;
+    style_[env_id] = clip;
+  } else if (lib && !clips.empty()) {
+    // Default init still pursues some clip's style (SIMS conditions every episode on a z).
+    style_[env_id] = clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+  } else {
+    style_[env_id] = -1;
+  }
+}
+
+void Skill::Observe(const sim::EnvView& view, float* out) const {
+  const int i = view.env_id;
+  const sim::BodyStates& b = *view.bodies;
+  const Eigen::Quaterniond h_inv = sim::HeadingInverse(b.rot[sim::kPelvis]);
+  float* o = out;
+  for (int j = 0; j < sim::kNumContactJoints; ++j, o += 4) {
+    if (mask_[i] & (1u << j)) {
+      const Eigen::Vector3d d = h_inv * (goals_[i][j] - sim::ContactJointPosition(b, j));
+      o[0] = static_cast<float>(d.x());
+      o[1] = static_cast<float>(d.y());
+      o[2] = static_cast<float>(d.z());
+      o[3] = 1.0f;
+    } else {
+      o[0] = o[1] = o[2] = o[3] = 0.0f;
+    }
+  }
+  heightmap_->SampleOne(b.pos[sim::kPelvis], sim::HeadingAngle(b.rot[sim::kPelvis]), o);
+  o += heightmap_->size();
+  const bool has_z = config_.style_conditioned && context_.styles && style_[i] >= 0 &&
+                     style_[i] < context_.styles->size();
+  for (int k = 0; k < kStyleDim; ++k) o[k] = has_z ? context_.styles->z(style_[i])[k] : 0.0f;
+}
+
+std::vector<double> Skill::SaveEnvState(int env_id) const {
+  std::vector<double> s;
+  for (int j = 0; j < sim::kNumContactJoints; ++j)
+    for (int k = 0; k < 3; ++k) s.push_back(goals_[env_id][j][k]);
+  s.push_back(mask_[env_id]);
+  s.push_back(style_[env_id]);
+  const auto extra = SaveSkillState(env_id);
+  s.insert(s.end(), extra.begin(), extra.end());
+  return s;
+}
+
+void Skill::LoadEnvState(int env_id, const std::vector<double>& s) {
+  const size_t base = sim::kNumContactJoints * 3 + 2;
+  if (s.size() < base)
+    ThrowInputError("skill state", name(), "a snapshot of this skill", "too little data");
+  size_t p = 0;
+  for (int j = 0; j < sim::kNumContactJoints; ++j)
+    for (int k = 0; k < 3; ++k) goals_[env_id][j][k] = s[p++];
+  mask_[env_id] = static_cast<uint32_t>(s[p++]);
+  style_[env_id] = static_cast<int>(s[p++]);
+  LoadSkillState(env_id, s.data() + p, s.size() - p);
+}
+
+std::vector<double> Skill::SaveSkillState(int) const { return {}; }
+void Skill::LoadSkillState(int, const double*, size_t) {}
+
+const std::vector<SkillInfo>& GetSkills() {
+  static const std::vector<SkillInfo> skills = {WalkSkillInfo()};
+  return skills;
+}
+
+const SkillInfo& FindSkill(const std::string& name) {
+  std::string known;
+  for (const auto& s : GetSkills()) {
+    if (s.name == name) return s;
+    known += (known.empty() ? "" : ", ") + s.name;
+  }
+  ThrowInputError("skill", "skill", "one of: " + known, "'" + name + "'");
+}
+
+SkillSetup CreateSkill(const SkillConfig& config, int num_envs, uint64_t seed,
+                       std::shared_ptr<const scene::Scene> scene_override) {
+  ValidateConfig(config, "skill config");
+  const SkillInfo& info = FindSkill(config.skill);
+  SkillSetup setup;
+  SkillContext& ctx = setup.context;
+  ctx.num_envs = num_envs;
+  Rng scene_rng(seed ^ 0x5EED5CE4Eull);
+  ctx.scene = scene_override
+                  ? scene_override
+                  : std::make_shared<const scene::Scene>(info.build_scene(config, scene_rng));
+  ctx.humanoid =
+      std::make_shared<const sim::Humanoid>(sim::BuildModel(sim::CompileSceneGeometry(*ctx.scene)));
+  ctx.ray_caster = std::make_shared<const scene::RayCaster>(*ctx.scene);
+  ctx.height_grid = std::make_shared<const scene::SceneHeightGrid>(*ctx.scene, *ctx.ray_caster,
+                                                                   scene::HeightGridConfig{});
+  if (!config.motion.manifest.empty()) {
+    std::filesystem::path manifest = config.motion.manifest;
+    if (manifest.is_relative() && !std::filesystem::exists(manifest))
+      manifest = ProjectRoot() / manifest;
+    motion::MotionLibraryOptions opt;
+    opt.mirror = config.motion.mirror;
+    opt.skills = config.motion.skills;
+    opt.emotions = config.motion.emotions;
+    ctx.motions = std::make_shared<const motion::MotionLibrary>(
+        motion::MotionLibrary::Load(manifest, ctx.humanoid, opt));
+    ctx.styles = std::make_shared<const StyleTable>(StyleTable::FromClipNames(*ctx.motions));
+    spdlog::info("skill {}: {} clips ({:.1f} s) from {}", config.skill, ctx.motions->num_clips(),
+                 ctx.motions->total_duration(), manifest.string());
+  }
+  setup.skill = info.create(config, ctx);
+  return setup;
+}
+
+}  // namespace sims::task

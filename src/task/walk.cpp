@@ -1,0 +1,154 @@
+// The reference skill. A skill has four jobs, each a TaskHook method:
+//   1. SampleInitialState — where the episode starts (the base class does hybrid
+//      reference-state init from the motion library; walk keeps that).
+//   2. OnReset            — draw the episode's goals once the character is placed.
+//   3. Step               — reward, success and termination after each control step.
+//   4. Observe            — the base class writes the contact goals, heightmap and z; a skill
+//      only keeps its goals up to date with SetGoal().
+// Everything per env lives in vectors indexed by env id: the environment calls these methods
+// for different envs from different OpenMP threads at once, so a skill must never touch
+// another env's slot or any shared mutable state.
+#include "sims/task/walk.h"
+
+#include <cmath>
+
+#include "sims/core/error.h"
+#include "sims/sim/features.h"
+
+namespace sims::task {
+
+namespace {
+// The pelvis goal height handed to the contact-goal observation: standing height, so the
+// z part of the goal tells a crouching character to stand up while it walks.
+constexpr double kStandingPelvisHeight = sim::kDefaultRootHeight;
+// Walk targets must be on free floor: the precomputed height there (and around it, for the
+// body's width) must be at floor level.
+constexpr double kFloorTolerance = 0.05;
+constexpr double kClearance = 0.3;
+}  // namespace
+
+WalkSkill::WalkSkill(const SkillConfig& config, const SkillContext& context)
+    : Skill(config, context) {
+  const int n = context.num_envs;
+  target_.assign(n, Eigen::Vector2d::Zero());
+  prev_velocity_.assign(n, Eigen::Vector2d::Zero());
+  hold_.assign(n, 0);
+  target_rng_.assign(n, Rng(0));
+  // Walk references only walking clips (the library may hold other skills).
+  if (context.motions) {
+    reference_clips_ = context.motions->Find("walk");
+    if (reference_clips_.empty())
+      for (int c = 0; c < context.motions->num_clips(); ++c) reference_clips_.push_back(c);
+  }
+}
+
+Eigen::Vector2d WalkSkill::SampleTarget(const Eigen::Vector2d& from, Rng& rng) const {
+  const auto& grid = *context_.height_grid;
+  Eigen::Vector2d best = from;
+  for (int attempt = 0; attempt < 32; ++attempt) {
+    const double r = rng.Uniform(config_.target_min_distance, config_.target_max_distance);
+    const double a = rng.Uniform(-M_PI, M_PI);
+    const Eigen::Vector2d p = from + r * Eigen::Vector2d(std::cos(a), std::sin(a));
+    best = p;
+    bool free = grid.Height(p.x(), p.y()) < kFloorTolerance;
+    for (int k = 0; k < 8 && free; ++k) {
+      const double b = k * M_PI / 4;
+      free = grid.Height(p.x() + kClearance * std::cos(b), p.y() + kClearance * std::sin(b)) <
+             kFloorTolerance;
+    }
+    if (free) return p;
+  }
+  return best;  // a cluttered scene: the last draw is still a valid, if hard, target
+}
+
+void WalkSkill::SetTarget(int env_id, const Eigen::Vector2d& target_xy) {
+  target_[env_id] = target_xy;
+  hold_[env_id] = 0;
+  ClearGoals(env_id);
+  SetGoal(env_id, sim::kCjPelvis, {target_xy.x(), target_xy.y(), kStandingPelvisHeight});
+}
+
+void WalkSkill::OnReset(const sim::EnvView& view, Rng& rng) {
+  const int i = view.env_id;
+  // Seed the env's private target stream from the env RNG so resets stay reproducible.
+  target_rng_[i] = Rng(rng.NextU64());
+  const Eigen::Vector2d root = view.pose->root_pos.head<2>();
+  prev_velocity_[i] = view.pose->root_lin_vel.head<2>();
+  SetTarget(i, SampleTarget(root, target_rng_[i]));
+}
+
+double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& root,
+                         const Eigen::Vector2d& velocity, const Eigen::Vector2d& prev_velocity,
+                         const Eigen::Vector2d& facing, double target_speed) {
+  const Eigen::Vector2d delta = target - root;
+  const double d2 = delta.squaredNorm();
+  const double r_near = std::exp(-10.0 * d2);
+  if (d2 > 0.5) {
+    const Eigen::Vector2d dir = delta / std::sqrt(d2);
+    const double speed_err = target_speed - dir.dot(velocity);
+    const double facing_dot = dir.dot(facing);
+    const double r_far = 0.6 * std::exp(-0.5 * d2) + 0.2 * std::exp(-2.0 * speed_err * speed_err) +
+                         0.2 * facing_dot * facing_dot;
+    return 0.4 * r_near + 0.5 * r_far;
+  }
+  const double r_still = std::exp(-2.0 * (velocity - prev_velocity).squaredNorm());
+  return 0.4 * r_near + 0.5 + 0.1 * r_still;
+}
+
+sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
+  const int i = view.env_id;
+  const Eigen::Vector2d root = view.pose->root_pos.head<2>();
+  const Eigen::Vector2d vel = view.pose->root_lin_vel.head<2>();
+  const double heading = sim::HeadingAngle(view.pose->root_rot);
+  const Eigen::Vector2d facing(std::cos(heading), std::sin(heading));
+
+  sim::TaskStepResult r;
+  r.reward = static_cast<float>(
+      Reward(target_[i], root, vel, prev_velocity_[i], facing, config_.target_speed));
+  prev_velocity_[i] = vel;
+  r.success = (target_[i] - root).norm() < config_.walk_success_radius;
+  hold_[i] = r.success ? hold_[i] + 1 : 0;
+  if (hold_[i] >= config_.success_hold_steps && config_.resample_target_on_success)
+    SetTarget(i, SampleTarget(root, target_rng_[i]));
+  return r;
+}
+
+std::vector<double> WalkSkill::SaveSkillState(int env_id) const {
+  std::vector<double> s = {target_[env_id].x(), target_[env_id].y(), prev_velocity_[env_id].x(),
+                           prev_velocity_[env_id].y(), static_cast<double>(hold_[env_id])};
+  // The RNG state is four 64-bit words; doubles cannot hold them exactly, so split each
+  // into two 32-bit halves.
+  for (uint64_t w : target_rng_[env_id].state()) {
+    s.push_back(static_cast<double>(w >> 32));
+    s.push_back(static_cast<double>(w & 0xffffffffull));
+  }
+  return s;
+}
+
+void WalkSkill::LoadSkillState(int env_id, const double* d, size_t size) {
+  if (size != 13) ThrowInputError("walk skill state", "size", "13 values", std::to_string(size));
+  target_[env_id] = {d[0], d[1]};
+  prev_velocity_[env_id] = {d[2], d[3]};
+  hold_[env_id] = static_cast<int>(d[4]);
+  std::array<uint64_t, 4> st;
+  for (int k = 0; k < 4; ++k)
+    st[k] = (static_cast<uint64_t>(d[5 + 2 * k]) << 32) | static_cast<uint64_t>(d[6 + 2 * k]);
+  target_rng_[env_id].set_state(st);
+}
+
+SkillInfo WalkSkillInfo() {
+  SkillInfo info;
+  info.name = "walk";
+  info.description = "walk to a target on free floor in a style, then stand still";
+  info.build_scene = [](const SkillConfig&, Rng&) {
+    scene::Scene s;
+    s.name = "flat_ground";
+    return s;
+  };
+  info.create = [](const SkillConfig& c, const SkillContext& ctx) -> std::shared_ptr<Skill> {
+    return std::make_shared<WalkSkill>(c, ctx);
+  };
+  return info;
+}
+
+}  // namespace sims::task

@@ -1,0 +1,91 @@
+#include "sims/task/walk.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "sims/core/error.h"
+
+namespace sims::task {
+namespace {
+
+TEST(WalkRewardTest, MatchesTheStatedFormula) {
+  const Eigen::Vector2d zero(0, 0), x(1, 0);
+  // At the target and still: 0.4·1 + 0.5 + 0.1·1.
+  EXPECT_NEAR(WalkSkill::Reward(zero, zero, zero, zero, x, 1.0), 1.0, 1e-12);
+  // 2 m away, moving straight at it at the target speed, facing it.
+  const Eigen::Vector2d target(2, 0);
+  const double r_far = 0.6 * std::exp(-0.5 * 4) + 0.2 * 1.0 + 0.2 * 1.0;
+  EXPECT_NEAR(WalkSkill::Reward(target, zero, x, x, x, 1.0), 0.4 * std::exp(-40.0) + 0.5 * r_far,
+              1e-12);
+  // Facing sideways and standing: the speed and facing terms vanish.
+  const double r_far2 = 0.6 * std::exp(-2.0) + 0.2 * std::exp(-2.0);
+  EXPECT_NEAR(WalkSkill::Reward(target, zero, zero, zero, Eigen::Vector2d(0, 1), 1.0),
+              0.4 * std::exp(-40.0) + 0.5 * r_far2, 1e-12);
+}
+
+TEST(SkillRegistryTest, UnknownSkillListsKnownOnes) {
+  try {
+    FindSkill("fly");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("walk"), std::string::npos);
+  }
+}
+
+class WalkEnvTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    SkillConfig c;
+    c.target_min_distance = 3;
+    c.target_max_distance = 5;
+    setup_ = CreateSkill(c, 4, 1);
+    sim::EnvConfig ec;
+    ec.num_envs = 4;
+    ec.threads = 2;
+    ec.seed = 3;
+    env_ = std::make_unique<sim::BatchedEnv>(setup_.context.humanoid, ec, setup_.skill);
+  }
+  SkillSetup setup_;
+  std::unique_ptr<sim::BatchedEnv> env_;
+};
+
+TEST_F(WalkEnvTest, ObservationLayoutAndGoals) {
+  EXPECT_EQ(env_->obs_dim(), 223 + 60 + 256 + 64);
+  auto* walk = dynamic_cast<WalkSkill*>(setup_.skill.get());
+  ASSERT_NE(walk, nullptr);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(walk->goal_mask(i), 1u << sim::kCjPelvis);
+    const double d = (walk->target(i) - env_->pose(i).root_pos.head<2>()).norm();
+    EXPECT_GE(d, 3 - 1e-9);
+    EXPECT_LE(d, 5 + 1e-9);
+    const float* o = env_->observations() + i * env_->obs_dim() + 223;
+    // Pelvis goal: horizontal distance preserved in the heading frame, mask set.
+    EXPECT_NEAR(std::hypot(o[0], o[1]), d, 1e-4);
+    EXPECT_EQ(o[3], 1.0f);
+    EXPECT_EQ(o[7], 0.0f);
+    // Flat floor: every heightmap value is −root height.
+    for (int k = 0; k < 256; ++k) EXPECT_NEAR(o[60 + k], -env_->pose(i).root_pos.z(), 1e-4);
+  }
+}
+
+TEST_F(WalkEnvTest, SnapshotRestoresTargets) {
+  std::vector<float> act(4 * 28, 0.0f);
+  for (int t = 0; t < 10; ++t) env_->Step(act.data());
+  const std::string snap = env_->SaveState();
+  auto other = CreateSkill(setup_.skill->config(), 4, 77);
+  sim::EnvConfig ec = env_->config();
+  ec.seed = 99;
+  sim::BatchedEnv env2(other.context.humanoid, ec, other.skill);
+  env2.LoadState(snap);
+  for (int t = 0; t < 20; ++t) {
+    env_->Step(act.data());
+    env2.Step(act.data());
+  }
+  EXPECT_EQ(0, std::memcmp(env_->observations(), env2.observations(),
+                           sizeof(float) * 4 * env_->obs_dim()));
+}
+
+}  // namespace
+}  // namespace sims::task
