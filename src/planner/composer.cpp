@@ -140,8 +140,11 @@ ThemePlanner::ThemePlanner(const ScriptDatabase& db, const Vocabulary& vocab,
 
 namespace {
 
+// Two interactions are "the same keyframe" when they do the same thing in the same style on the
+// same kind of furniture, whatever their wording; walks and get-ups repeat only verbatim.
 std::string Signature(const Keyframe& k) {
-  return std::string(SkillName(k.skill)) + "|" + k.furniture + "|" + NormalizeSpaces(k.caption);
+  std::string s = std::string(SkillName(k.skill)) + "|" + k.furniture + "|";
+  return IsInteraction(k.skill) ? s + k.style : s + NormalizeSpaces(k.caption);
 }
 
 // Spreads `n` interactions over `k` arc steps: every step gets at least one when n ≥ k (earlier
@@ -185,7 +188,10 @@ LongScript ThemePlanner::Plan(const std::string& theme, Difficulty difficulty,
     const ArcSegment& step = ls.arc[arc_index];
     int remaining = quota;
     for (std::size_t attempt = 0; remaining > 0 && attempt < db_.size(); ++attempt) {
-      RetrievalQuery q{step.text, theme, step.emotion, rooms, previous_room};
+      // A room named in this step wins over rooms named elsewhere in the theme.
+      std::vector<std::string> step_rooms = retriever_.RoomsIn(step.text);
+      RetrievalQuery q{step.text, theme, step.emotion, step_rooms.empty() ? rooms : step_rooms,
+                       previous_room};
       std::vector<ScoredScript> ranked;
       for (const ScoredScript& s : retriever_.Rank(q))
         if (!used_scripts.count(s.index)) ranked.push_back(s);
@@ -226,15 +232,20 @@ LongScript ThemePlanner::Plan(const std::string& theme, Difficulty difficulty,
       ++segment;
     }
   }
-  // Skipping duplicates can leave a get-up whose sit was skipped: drop such get-ups before the
-  // grammar repair (which would reject them) — a repeated keyframe is never kept.
+  // Skipping duplicates can leave a get-up whose sit was skipped, and joining scripts can leave
+  // a walk to the object the character already stands at: drop both before the grammar repair
+  // (which would reject the first and not need the second).
   std::vector<Keyframe> cleaned;
   bool seated = false;
+  std::string at;  // "category#instance" the character stands at ("" = unknown / walked away)
   for (const Keyframe& k : keyframes) {
+    std::string ref = k.furniture + "#" + std::to_string(k.instance);
     if (k.skill == Skill::kGetUp && !seated) continue;
+    if (k.skill == Skill::kWalk && !seated && !at.empty() && ref == at) continue;
     if (k.skill == Skill::kSit || k.skill == Skill::kLie) seated = true;
     if (k.skill == Skill::kGetUp || k.skill == Skill::kWalk || k.skill == Skill::kReach)
       seated = false;
+    at = k.skill == Skill::kWalk && k.furniture == "floor" ? "" : ref;
     cleaned.push_back(k);
   }
   ls.keyframes = InsertTransitions(cleaned, "theme planner", vocab_);

@@ -53,7 +53,11 @@ SceneGraph LayoutEntry::Graph() const {
     gn.important = n.important;
     gn.position = Eigen::Vector3d(n.position[0], n.position[1], n.position[2]);
     gn.room = n.room;
-    if (room_types.size() == 1) gn.room_types = room_types;
+    if (!n.room_type.empty()) {
+      gn.room_types = {n.room_type};
+    } else if (room_types.size() == 1) {
+      gn.room_types = room_types;
+    }
     g.nodes.push_back(gn);
   }
   for (const auto& e : edges) g.AddEdge(e[0], e[1]);
@@ -105,6 +109,7 @@ std::vector<LayoutEntry> MakeLayoutEntries(const scene::Scene& scene, const Layo
     ln.important = n.important;
     ln.position = {n.position.x(), n.position.y(), n.position.z()};
     ln.room = n.room;
+    if (!n.room_types.empty()) ln.room_type = n.room_types.front();
     scene::Aabb b = ObjectBounds(*by_instance.at(n.instance));
     ln.box = {b.min.x(), b.min.y(), b.max.x(), b.max.y()};
     nodes.push_back(ln);
@@ -248,9 +253,10 @@ Composition ComposeRooms(const std::vector<RoomPiece>& rooms, const CompositionC
       }
     }
     if (!found)
-      spdlog::warn("ComposeRooms: furniture stands in front of every door position between '{}' "
-                   "and '{}'; using the least obstructed one",
-                   rooms[k].id, rooms[k + 1].id);
+      spdlog::warn(
+          "ComposeRooms: furniture stands in front of every door position between '{}' "
+          "and '{}'; using the least obstructed one",
+          rooms[k].id, rooms[k + 1].id);
     wall(xw, f[1] - t, xw, yc - 0.5 * width);
     wall(xw, yc + 0.5 * width, xw, top);
     PlanDoor d;

@@ -6,11 +6,11 @@
 #include <sys/types.h>
 #include <unistd.h>
 
+#include <fcntl.h>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
-#include <fcntl.h>
 
 #include <nlohmann/json.hpp>
 
@@ -71,7 +71,8 @@ HttpUrl ParseHttpUrl(const std::string& url) {
     if (close == std::string::npos)
       throw LlmError(LlmError::Kind::kConfig, "LLM endpoint '" + url + "': unterminated [address]");
     u.host = authority.substr(1, close - 1);
-    if (close + 1 < authority.size() && authority[close + 1] == ':') port = authority.substr(close + 2);
+    if (close + 1 < authority.size() && authority[close + 1] == ':')
+      port = authority.substr(close + 2);
     else if (close + 1 < authority.size())
       throw LlmError(LlmError::Kind::kConfig, "LLM endpoint '" + url + "': bad authority");
   } else {
@@ -85,10 +86,12 @@ HttpUrl ParseHttpUrl(const std::string& url) {
     char* end = nullptr;
     long p = std::strtol(port.c_str(), &end, 10);
     if (*end != '\0' || p <= 0 || p > 65535)
-      throw LlmError(LlmError::Kind::kConfig, "LLM endpoint '" + url + "': bad port '" + port + "'");
+      throw LlmError(LlmError::Kind::kConfig,
+                     "LLM endpoint '" + url + "': bad port '" + port + "'");
     u.port = static_cast<int>(p);
   }
-  if (u.host.empty()) throw LlmError(LlmError::Kind::kConfig, "LLM endpoint '" + url + "': no host");
+  if (u.host.empty())
+    throw LlmError(LlmError::Kind::kConfig, "LLM endpoint '" + url + "': no host");
   return u;
 }
 
@@ -209,7 +212,8 @@ bool DecodeChunked(const std::string& body, std::string* out) {
 bool ParseResponse(const std::string& raw, bool eof, HttpResponse* out) {
   std::size_t end = raw.find("\r\n\r\n");
   if (end == std::string::npos) {
-    if (eof) throw LlmError(LlmError::Kind::kProtocol, "connection closed before the HTTP headers ended");
+    if (eof)
+      throw LlmError(LlmError::Kind::kProtocol, "connection closed before the HTTP headers ended");
     return false;
   }
   std::string head = raw.substr(0, end);
@@ -248,7 +252,8 @@ HttpResponse HttpPost(const std::string& url,
                       const std::vector<std::pair<std::string, std::string>>& headers,
                       const std::string& body, double timeout_s) {
   HttpUrl u = ParseHttpUrl(url);
-  auto deadline = Clock::now() + std::chrono::milliseconds(static_cast<long long>(timeout_s * 1000));
+  auto deadline =
+      Clock::now() + std::chrono::milliseconds(static_cast<long long>(timeout_s * 1000));
   Socket sock(Connect(u, deadline));
   std::string request = "POST " + u.path + " HTTP/1.1\r\nHost: " + u.host + ":" +
                         std::to_string(u.port) +

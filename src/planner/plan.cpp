@@ -1,6 +1,7 @@
 #include "sims/planner/plan.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace sims::planner {
 
@@ -61,6 +62,35 @@ Plan LoadPlan(const std::filesystem::path& path) { return LoadConfig<Plan>(path)
 void SavePlan(const std::filesystem::path& path, const Plan& plan) {
   ValidateConfig(plan, path.string());
   WriteJsonFile(path, PlanToJson(plan));
+}
+
+std::string DescribePlan(const Plan& p) {
+  std::string s;
+  s += "planner: " + p.planner + (p.planner_note.empty() ? "" : " (" + p.planner_note + ")") + "\n";
+  std::string arc;
+  for (const std::string& a : p.arc) arc += (arc.empty() ? "" : " -> ") + a;
+  s += "arc: " + arc + "\n";
+  s += "layout: " + p.layout.name + " [" + p.layout.mode + ", cost " +
+       std::to_string(p.layout.cost).substr(0, 6) + (p.layout.exact ? ", exact" : ", approximate") +
+       "]\n";
+  for (const PlanRoom& r : p.layout.rooms)
+    s += "  room " + r.id + " (" + r.type + ") from " + r.source.kind +
+         (r.source.name.empty() ? "" : " " + r.source.name) +
+         (r.source.room_id.empty() ? "" : " / " + r.source.room_id) + "\n";
+  for (const PlanKeyframe& k : p.keyframes) {
+    char line[512];
+    std::snprintf(line, sizeof(line), "%3d %-5s %-8s %-18s %-28s %s%s%s\n", k.index,
+                  k.skill.c_str(), k.emotion.c_str(), k.style.c_str(),
+                  (k.object.empty() ? (k.placed ? std::string("(floor)") : std::string("UNPLACED"))
+                                    : k.object)
+                      .c_str(),
+                  k.caption.c_str(), k.inserted ? " [inserted]" : "",
+                  k.note.empty() ? "" : ("  -- " + k.note).c_str());
+    s += line;
+  }
+  for (const std::string& w : p.warnings) s += "warning: " + w + "\n";
+  s += "story: " + p.narrative + "\n";
+  return s;
 }
 
 }  // namespace sims::planner

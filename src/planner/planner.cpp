@@ -40,15 +40,17 @@ ScriptResult StoryPlanner::ScriptForTheme(const std::string& theme, Difficulty d
                                           uint64_t seed) const {
   if (config_.llm.ResolvedEndpoint().empty()) {
     ScriptResult r = EmbeddedScript(theme, difficulty, seed);
-    r.note = "no LLM endpoint configured (--llm-endpoint or $SIMS_LLM_ENDPOINT): used the "
-             "embedded planner";
+    r.note =
+        "no LLM endpoint configured (--llm-endpoint or $SIMS_LLM_ENDPOINT): used the "
+        "embedded planner";
     return r;
   }
   try {
     return LlmScript(theme, difficulty, seed);
   } catch (const Error& e) {
     ScriptResult r = EmbeddedScript(theme, difficulty, seed);
-    r.note = std::string("LLM back-end failed (") + e.what() + "): fell back to the embedded planner";
+    r.note =
+        std::string("LLM back-end failed (") + e.what() + "): fell back to the embedded planner";
     spdlog::warn("{}", r.note);
     return r;
   }
@@ -91,7 +93,8 @@ std::pair<std::string, std::string> StoryPlanner::LlmPrompts(const std::string& 
     const ShortScript& s = db_->scripts()[idx];
     json line = {{"id", s.id}, {"emotion", s.emotion}, {"scene", s.scene}, {"summary", s.summary}};
     json kfs = json::array();
-    for (const Keyframe& k : s.keyframes) kfs.push_back({SkillName(k.skill), k.caption, k.furniture});
+    for (const Keyframe& k : s.keyframes)
+      kfs.push_back({SkillName(k.skill), k.caption, k.furniture});
     line["keyframes"] = kfs;
     candidates += line.dump() + "\n";
   }
@@ -139,7 +142,8 @@ LongScript StoryPlanner::ParseLlmReply(const std::string& content, Difficulty di
                           "'" + arr[i].get<std::string>() + "'");
         scripts.push_back(*s);
       } else {
-        ShortScript s = ParseShortScript(arr[i], source + " " + field, GrammarMode::kLenient, *vocab_);
+        ShortScript s =
+            ParseShortScript(arr[i], source + " " + field, GrammarMode::kLenient, *vocab_);
         if (s.id.empty()) s.id = "llm_" + std::to_string(i);
         scripts.push_back(std::move(s));
       }
@@ -172,7 +176,8 @@ LongScript StoryPlanner::ParseLlmReply(const std::string& content, Difficulty di
     ls.keyframes = kept;
   }
   if (auto it = j.find("narrative"); it != j.end()) {
-    if (!it->is_string()) ThrowInputError(source, "narrative", "a string", it->dump().substr(0, 60));
+    if (!it->is_string())
+      ThrowInputError(source, "narrative", "a string", it->dump().substr(0, 60));
     ls.narrative = Trim(it->get<std::string>());
   }
   return ls;
@@ -206,6 +211,24 @@ Plan StoryPlanner::Place(const ScriptResult& script, const LayoutDatabase& layou
 
 Plan StoryPlanner::Place(const ScriptResult& script, const scene::Scene& scene) const {
   return BuildPlan(script, MatchScene(script.script, scene, config_.layout, *vocab_), *vocab_);
+}
+
+Plan StoryPlanner::PlaceInSceneFile(const ScriptResult& script,
+                                    const std::string& scene_path) const {
+  LayoutSource src;
+  src.kind = "scene_file";
+  src.path = scene_path;
+  src.name = scene_path;
+  scene::Scene scene = DefaultSceneLoader()(src);
+  Plan p = Place(script, scene);
+  // Record how to rebuild the scene: one "single" room whose source is the file.
+  PlanRoom room;
+  room.id = scene.name.empty() ? "scene" : scene.name;
+  room.type = scene.rooms.size() == 1 ? p.layout.rooms.front().type : "house";
+  room.source = src;
+  p.layout.mode = "single";
+  p.layout.rooms = {room};
+  return p;
 }
 
 Plan BuildPlan(const ScriptResult& sr, const LayoutMatch& match, const Vocabulary& vocab) {
@@ -259,6 +282,26 @@ LayoutDatabase BuiltinLayoutDatabase(const LayoutConfig& config) {
   LayoutDatabase db = BuildLayoutDatabase(true, false, {}, {}, config, &log);
   for (const std::string& l : log) spdlog::debug("{}", l);
   return db;
+}
+
+Plan PlanStory(const PlanRequest& req, TextEmbedder embedder) {
+  if (req.theme.empty() == req.script.empty())
+    ThrowInputError("plan_story", "--theme / --script", "exactly one of them",
+                    req.theme.empty() ? "neither" : "both");
+  PlannerConfig config = LoadPlannerConfig(req.config);
+  if (!req.llm_endpoint.empty()) config.llm.endpoint = req.llm_endpoint;
+  if (!req.llm_model.empty()) config.llm.model = req.llm_model;
+  if (!req.llm_key.empty()) config.llm.api_key = req.llm_key;
+  if (req.llm_timeout_s > 0) config.llm.timeout_s = req.llm_timeout_s;
+  StoryPlanner planner(config, std::move(embedder));
+  ScriptResult script =
+      req.script.empty()
+          ? planner.ScriptForTheme(req.theme, ParseDifficulty(req.difficulty), req.seed)
+          : planner.ScriptFromFile(req.script);
+  if (!req.scene.empty()) return planner.PlaceInSceneFile(script, req.scene);
+  LayoutDatabase layouts = req.layouts.empty() ? BuiltinLayoutDatabase(config.layout)
+                                               : LayoutDatabase::Load(req.layouts);
+  return planner.Place(script, layouts);
 }
 
 }  // namespace sims::planner

@@ -22,7 +22,8 @@ void SceneGraphConfig::Validate() const {
 
 void MatchCostConfig::Validate() const {
   Require(missing_node >= 0 && extra_node >= 0 && missing_edge >= 0 && extra_edge >= 0 &&
-              unimportant_weight >= 0 && room_mismatch >= 0 && composition_penalty >= 0,
+              unimportant_weight >= 0 && room_mismatch >= 0 && node_room_mismatch >= 0 &&
+              composition_penalty >= 0,
           "missing_node", "non-negative costs");
 }
 
@@ -32,9 +33,14 @@ EditCosts RetrievalCosts(const MatchCostConfig& config, const Vocabulary& vocab)
   auto weight = [config](const GraphNode& n) {
     return n.important ? 1.0 : config.unimportant_weight;
   };
-  c.substitute = [v](const GraphNode& a, const GraphNode& b) {
+  c.substitute = [v, config](const GraphNode& a, const GraphNode& b) {
     std::optional<double> s = v->SubstitutionCost(a.category, b.category);
-    return s ? *s : std::numeric_limits<double>::infinity();
+    if (!s) return std::numeric_limits<double>::infinity();
+    bool shared = a.room_types.empty() || b.room_types.empty();
+    for (const std::string& r : a.room_types)
+      shared =
+          shared || std::find(b.room_types.begin(), b.room_types.end(), r) != b.room_types.end();
+    return *s + (shared ? 0.0 : config.node_room_mismatch);
   };
   c.remove = [config, weight](const GraphNode& a) { return config.missing_node * weight(a); };
   c.insert = [config, weight](const GraphNode& b) { return config.extra_node * weight(b); };

@@ -372,12 +372,15 @@ namespace {
 
 enum class Posture { kStanding, kSeated, kLying };
 
+// Objects are identified by category and instance index; the segment (short script) is carried
+// along for inserted keyframes but does not distinguish objects, matching the required graph's
+// consolidation (the sofa of one short script is the sofa of the next).
 struct ObjectRef {
   std::string category;
   int instance = 0;
   int segment = 0;
   bool operator==(const ObjectRef& o) const {
-    return category == o.category && instance == o.instance && segment == o.segment;
+    return category == o.category && instance == o.instance;
   }
 };
 

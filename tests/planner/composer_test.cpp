@@ -44,6 +44,28 @@ TEST_F(ComposerTest, RanksTheObviousScriptFirst) {
             "living_room_tired_2");
 }
 
+TEST_F(ComposerTest, EmbeddingSimilarityIsPluggedIn) {
+  // A toy embedder: one dimension per word family; "sad" texts and "sorrow" share one.
+  TextEmbedder embed = [](const std::string& text) {
+    Eigen::VectorXf v = Eigen::VectorXf::Zero(2);
+    if (text.find("sorrow") != std::string::npos || text.find("lonely") != std::string::npos)
+      v[0] = 1;
+    v[1] = 0.1f;
+    return v;
+  };
+  RetrievalConfig rc;
+  rc.w_text = 0.0;
+  rc.w_emotion = 0.0;
+  rc.w_embedding = 1.0;
+  ScriptRetriever with(*db_, Vocabulary::Default(), rc, embed);
+  RetrievalQuery q{"full of sorrow", "full of sorrow", "neutral", {}, ""};
+  const ShortScript& top = db_->scripts()[with.Rank(q).front().index];
+  EXPECT_NE(top.summary.find("lonely"), std::string::npos) << top.id;
+  EXPECT_GT(with.Rank(q).front().embedding, 0.9);
+  ScriptRetriever without(*db_, Vocabulary::Default(), rc);
+  EXPECT_EQ(without.Rank(q).front().embedding, 0.0);
+}
+
 TEST_F(ComposerTest, ExpandsFurnitureAliasesAndFindsRooms) {
   ThemePlanner p = Planner();
   EXPECT_NE(p.retriever().ExpandFurniture("naps on the couch").find("sofa"), std::string::npos);

@@ -153,7 +153,8 @@ TEST_F(LlmTest, ValidReplyIsUsed) {
   ScriptResult r = planner.ScriptForTheme(kTheme, Difficulty::kMid, 7);
   EXPECT_EQ(r.planner, "llm:test-model");
   EXPECT_TRUE(r.note.empty()) << r.note;
-  EXPECT_EQ(r.script.script_ids, (std::vector<std::string>{"bedroom_happy_1", "living_room_sad_1"}));
+  EXPECT_EQ(r.script.script_ids,
+            (std::vector<std::string>{"bedroom_happy_1", "living_room_sad_1"}));
   EXPECT_EQ(r.script.EmotionSequence(), (std::vector<std::string>{"happy", "sad"}));
   EXPECT_THAT(r.script.narrative, HasSubstr("Bursting with joy"));
   EXPECT_TRUE(CheckGrammar(r.script.keyframes).empty());
@@ -167,7 +168,8 @@ TEST_F(LlmTest, ValidReplyIsUsed) {
   EXPECT_EQ(body["seed"], 7);
   EXPECT_EQ(body["messages"][0]["role"], "system");
   EXPECT_THAT(body["messages"][1]["content"].get<std::string>(), HasSubstr(kTheme));
-  EXPECT_THAT(body["messages"][1]["content"].get<std::string>(), HasSubstr("\"id\":\"bedroom_happy_1\""));
+  EXPECT_THAT(body["messages"][1]["content"].get<std::string>(),
+              HasSubstr("\"id\":\"bedroom_happy_1\""));
   EXPECT_EQ(body["response_format"]["type"], "json_object");
   // The plan keeps the LLM's narrative.
   Plan plan = planner.Place(r, BuiltinLayoutDatabase());
@@ -208,7 +210,8 @@ TEST_F(LlmTest, MalformedRepliesFallBack) {
     EXPECT_EQ(r.planner, "embedded") << c.reason;
     EXPECT_THAT(r.note, HasSubstr("fell back to the embedded planner"));
     EXPECT_THAT(r.note, HasSubstr(c.reason));
-    EXPECT_EQ(KeyframesToJson(r.script.keyframes).dump(), KeyframesToJson(embedded.script.keyframes).dump());
+    EXPECT_EQ(KeyframesToJson(r.script.keyframes).dump(),
+              KeyframesToJson(embedded.script.keyframes).dump());
   }
 }
 
@@ -232,11 +235,12 @@ TEST_F(LlmTest, NoEndpointOrUnreachableServerFallsBack) {
     FakeServer closed({});
     port = std::stoi(closed.url().substr(17, 5));
   }  // nothing listens there any more
-  ScriptResult refused =
-      Planner("http://127.0.0.1:" + std::to_string(port) + "/v1").ScriptForTheme(kTheme, Difficulty::kMid, 1);
+  ScriptResult refused = Planner("http://127.0.0.1:" + std::to_string(port) + "/v1")
+                             .ScriptForTheme(kTheme, Difficulty::kMid, 1);
   EXPECT_EQ(refused.planner, "embedded");
   EXPECT_THAT(refused.note, HasSubstr("cannot connect"));
-  ScriptResult https = Planner("https://api.example.com/v1").ScriptForTheme(kTheme, Difficulty::kMid, 1);
+  ScriptResult https =
+      Planner("https://api.example.com/v1").ScriptForTheme(kTheme, Difficulty::kMid, 1);
   EXPECT_THAT(https.note, HasSubstr("https is not supported"));
 }
 

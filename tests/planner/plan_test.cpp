@@ -57,7 +57,8 @@ TEST_F(PlanTest, ThemeToPlanBindsEveryKeyframe) {
 
 TEST_F(PlanTest, SameThemeAndSeedGiveTheSamePlanFile) {
   auto run = [&] {
-    ScriptResult s = planner_->ScriptForTheme("a drunk student stumbles home and sleeps", Difficulty::kHard, 9);
+    ScriptResult s =
+        planner_->ScriptForTheme("a drunk student stumbles home and sleeps", Difficulty::kHard, 9);
     return PlanToJson(planner_->Place(s, *layouts_)).dump();
   };
   EXPECT_EQ(run(), run());
@@ -88,7 +89,8 @@ TEST_F(PlanTest, RoundTripsThroughTheFileAndRejectsBadFields) {
 
 TEST_F(PlanTest, ScriptFileInputAndAGivenScene) {
   auto dir = sims::testing::TempDir("planner_script_input");
-  std::ofstream(dir / "story.json") << R"({"summary": "sits then lies", "emotion": "tired", "scene": "living room",
+  std::ofstream(dir / "story.json")
+      << R"({"summary": "sits then lies", "emotion": "tired", "scene": "living room",
       "keyframes": [{"skill": "sitdown", "caption": "slumps into the couch", "furniture": "couch"},
                     {"skill": "liedown", "caption": "curls up on the side", "furniture": "couch"}]})";
   ScriptResult s = planner_->ScriptFromFile(dir / "story.json");

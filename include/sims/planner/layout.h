@@ -28,6 +28,7 @@ struct LayoutNode {
   std::array<double, 3> position{0, 0, 0};  ///< Bounds centre (source coordinates).
   std::array<double, 4> box{0, 0, 0, 0};    ///< Footprint xmin, ymin, xmax, ymax.
   std::string room;                         ///< Room id in the source scene.
+  std::string room_type;                    ///< Canonical type of that room ("" if unknown).
 
   /// Lists the fields for the JSON archives.
   template <class A>
@@ -38,6 +39,7 @@ struct LayoutNode {
     a->Visit(SIMS_NVP(position));
     a->Visit(SIMS_NVP(box));
     a->Visit(SIMS_NVP(room));
+    a->Visit(SIMS_NVP(room_type));
   }
 };
 

@@ -17,16 +17,16 @@ namespace sims::planner {
 /// LLM back-end settings (configs/planner/planner.json "llm"; flags and environment override).
 struct LlmConfig {
   std::string endpoint;  ///< Base URL ("http://127.0.0.1:8080/v1"); "" → $SIMS_LLM_ENDPOINT.
-  std::string model = "default";          ///< Model name; $SIMS_LLM_MODEL overrides "default".
-  std::string api_key;                    ///< Key; "" → $<api_key_env>, then $OPENAI_API_KEY.
+  std::string model = "default";  ///< Model name; $SIMS_LLM_MODEL overrides "default".
+  std::string api_key;            ///< Key; "" → $<api_key_env>, then $OPENAI_API_KEY.
   std::string api_key_env = "SIMS_LLM_API_KEY";  ///< Environment variable holding the key.
-  double timeout_s = 60.0;                ///< Whole-request time-out (connect + reply).
-  double temperature = 0.0;               ///< Sampling temperature (0: as repeatable as possible).
-  int max_tokens = 2048;                  ///< Reply length limit.
-  bool json_mode = true;                  ///< Ask for response_format {"type": "json_object"}.
+  double timeout_s = 60.0;                       ///< Whole-request time-out (connect + reply).
+  double temperature = 0.0;  ///< Sampling temperature (0: as repeatable as possible).
+  int max_tokens = 2048;     ///< Reply length limit.
+  bool json_mode = true;     ///< Ask for response_format {"type": "json_object"}.
   std::string system_prompt = "planner/llm_system_prompt.txt";  ///< Under configs/.
   std::string user_prompt = "planner/llm_user_prompt.txt";      ///< Under configs/.
-  int candidates = 24;                    ///< Short scripts offered to the model.
+  int candidates = 24;  ///< Short scripts offered to the model.
 
   /// Lists the fields for the JSON archives.
   template <class A>
@@ -69,9 +69,9 @@ class LlmError : public Error {
 
 /// Parts of an http:// URL.
 struct HttpUrl {
-  std::string host;         ///< Host name or address.
-  int port = 80;            ///< Port.
-  std::string path = "/";   ///< Path (with query).
+  std::string host;        ///< Host name or address.
+  int port = 80;           ///< Port.
+  std::string path = "/";  ///< Path (with query).
 };
 
 /// Parses "http://host[:port][/path]"; https and other schemes throw LlmError(kConfig).
@@ -83,8 +83,8 @@ std::string ChatCompletionsUrl(const std::string& endpoint);
 
 /// An HTTP response.
 struct HttpResponse {
-  int status = 0;     ///< Status code.
-  std::string body;   ///< Body (chunked transfer decoded).
+  int status = 0;    ///< Status code.
+  std::string body;  ///< Body (chunked transfer decoded).
 };
 
 /// POSTs `body` and waits at most `timeout_s` for the whole exchange.

@@ -241,5 +241,7 @@ Plan PlanFromJson(const nlohmann::json& j, const std::string& source);
 Plan LoadPlan(const std::filesystem::path& path);
 /// Writes a plan file atomically.
 void SavePlan(const std::filesystem::path& path, const Plan& plan);
+/// A human-readable summary (planner, arc, keyframes with bindings, layout, warnings, story).
+std::string DescribePlan(const Plan& plan);
 
 }  // namespace sims::planner

@@ -47,9 +47,9 @@ PlannerConfig LoadPlannerConfig(const std::filesystem::path& path = {});
 
 /// A long script and who produced it.
 struct ScriptResult {
-  LongScript script;          ///< The keyframes (grammar repaired) and narrative.
-  std::string planner;        ///< "embedded", "llm:<model>" or "script".
-  std::string note;           ///< Why the LLM was not used, or other remarks.
+  LongScript script;    ///< The keyframes (grammar repaired) and narrative.
+  std::string planner;  ///< "embedded", "llm:<model>" or "script".
+  std::string note;     ///< Why the LLM was not used, or other remarks.
 };
 
 /// Plans stories. Thread-compatible (one instance per thread).
@@ -79,8 +79,11 @@ class StoryPlanner {
 
   /// Chooses a layout from the database and binds every keyframe.
   Plan Place(const ScriptResult& script, const LayoutDatabase& layouts) const;
-  /// Binds every keyframe to objects of a scene the caller chose.
+  /// Binds every keyframe to objects of a scene the caller chose (layout mode "given").
   Plan Place(const ScriptResult& script, const scene::Scene& scene) const;
+  /// Loads a scene (scene::LoadSceneFile: built-in name, 3D-FRONT, ScanNet, mesh, ...) and
+  /// binds to it; the plan records the source so MaterializeLayout can rebuild it.
+  Plan PlaceInSceneFile(const ScriptResult& script, const std::string& scene) const;
 
   /// The configuration.
   const PlannerConfig& config() const { return config_; }
@@ -105,5 +108,23 @@ Plan BuildPlan(const ScriptResult& script, const LayoutMatch& match, const Vocab
 
 /// The built-in layout database (built-in rooms and house), indexed on the fly.
 LayoutDatabase BuiltinLayoutDatabase(const LayoutConfig& config = {});
+
+/// Everything apps/plan_story asks for.
+struct PlanRequest {
+  std::string theme;               ///< Theme (exclusive with script).
+  std::string script;              ///< Script file (exclusive with theme).
+  std::string difficulty = "mid";  ///< simple | mid | hard (themes only).
+  uint64_t seed = 0;               ///< Seed.
+  std::string layouts;             ///< Layout database file ("" = built-in layouts).
+  std::string scene;               ///< Bind to this scene instead of retrieving a layout.
+  std::string config;              ///< Planner config ("" = configs/planner/planner.json).
+  std::string llm_endpoint;        ///< Overrides the config's endpoint.
+  std::string llm_model;           ///< Overrides the config's model.
+  std::string llm_key;             ///< Overrides the config's key.
+  double llm_timeout_s = 0.0;      ///< Overrides the config's time-out when positive.
+};
+
+/// Theme or script → plan, as plan_story does it; errors name the flag or file.
+Plan PlanStory(const PlanRequest& request, TextEmbedder embedder = {});
 
 }  // namespace sims::planner

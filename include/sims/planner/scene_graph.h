@@ -55,6 +55,7 @@ struct MatchCostConfig {
   double extra_edge = 0.0;            ///< Layout adjacency the script does not need.
   double unimportant_weight = 0.3;    ///< Scales node costs of lamps, vases, decor.
   double room_mismatch = 0.3;         ///< Per short script whose room type the layout lacks.
+  double node_room_mismatch = 0.1;    ///< An object used in a room of another type.
   double composition_penalty = 0.25;  ///< Added to a multi-room composition's cost.
 
   /// Lists the fields for the JSON archives.
@@ -66,6 +67,7 @@ struct MatchCostConfig {
     a->Visit(SIMS_NVP(extra_edge));
     a->Visit(SIMS_NVP(unimportant_weight));
     a->Visit(SIMS_NVP(room_mismatch));
+    a->Visit(SIMS_NVP(node_room_mismatch));
     a->Visit(SIMS_NVP(composition_penalty));
   }
   /// Non-negative costs.
@@ -73,7 +75,8 @@ struct MatchCostConfig {
 };
 
 /// Edit costs for retrieval: same category free, substitution classes at their table cost,
-/// anything else forbidden; deletions/insertions from `config`, scaled for unimportant nodes.
+/// anything else forbidden, plus `node_room_mismatch` when both nodes know their room types and
+/// share none; deletions/insertions from `config`, scaled for unimportant nodes.
 EditCosts RetrievalCosts(const MatchCostConfig& config,
                          const Vocabulary& vocab = Vocabulary::Default());
 
