@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
   app.add_flag("--list", list, "list the steps and exit");
   app.add_flag("--force", opt.force, "rebuild even if up to date");
   app.add_option("--glove-top", opt.glove_top_words, "most frequent GloVe words to keep");
-  app.add_option("--vocabulary", vocab, "word lists always kept (default configs/language/vocabulary.txt)");
+  app.add_option("--vocabulary", vocab,
+                 "word lists always kept (default configs/language/vocabulary.txt)");
   app.add_option("--wordnet", opt.wordnet_dir, "WordNet dict folder");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
   CLI11_PARSE(app, argc, argv);

@@ -59,13 +59,27 @@ std::string ParseJsString(const std::string& src, std::size_t pos, const std::st
     if (++i >= src.size()) break;
     const char e = src[i];
     switch (e) {
-      case 'n': out.push_back('\n'); break;
-      case 't': out.push_back('\t'); break;
-      case 'r': out.push_back('\r'); break;
-      case 'b': out.push_back('\b'); break;
-      case 'f': out.push_back('\f'); break;
-      case 'v': out.push_back('\v'); break;
-      case '0': out.push_back('\0'); break;
+      case 'n':
+        out.push_back('\n');
+        break;
+      case 't':
+        out.push_back('\t');
+        break;
+      case 'r':
+        out.push_back('\r');
+        break;
+      case 'b':
+        out.push_back('\b');
+        break;
+      case 'f':
+        out.push_back('\f');
+        break;
+      case 'v':
+        out.push_back('\v');
+        break;
+      case '0':
+        out.push_back('\0');
+        break;
       case 'x':
         internal::AppendUtf8(static_cast<char32_t>(hex(i + 1, 2)), &out);
         i += 2;
@@ -84,8 +98,10 @@ std::string ParseJsString(const std::string& src, std::size_t pos, const std::st
         }
         break;
       }
-      case '\n': break;  // line continuation
-      default: out.push_back(e);  // \" \' \\ \/ and identity escapes
+      case '\n':
+        break;  // line continuation
+      default:
+        out.push_back(e);  // \" \' \\ \/ and identity escapes
     }
   }
   ThrowInputError(source, "text", "a terminated string literal", "end of file inside the string");
@@ -96,7 +112,9 @@ std::string ParseJsString(const std::string& src, std::size_t pos, const std::st
 class GloveSax : public nlohmann::json_sax<json> {
  public:
   GloveSax(int top_words, const std::unordered_set<std::string>& extra, internal::TarGzReader* tar)
-      : top_words_(top_words), extra_(extra), tar_(tar),
+      : top_words_(top_words),
+        extra_(extra),
+        tar_(tar),
         progress_("glove: parsing", static_cast<int64_t>(tar->CompressedSize()), "B", 5.0) {}
 
   bool null() override { return Scalar(0.0); }
@@ -240,7 +258,8 @@ fs::path FindNpmTarball(const fs::path& dir, const std::string& prefix) {
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
     if (name.rfind(prefix + "-", 0) == 0 && e.path().extension() == ".tgz" &&
-        name.size() > prefix.size() + 1 && std::isdigit(static_cast<unsigned char>(name[prefix.size() + 1])))
+        name.size() > prefix.size() + 1 &&
+        std::isdigit(static_cast<unsigned char>(name[prefix.size() + 1])))
       found.push_back(e.path());
   }
   if (found.empty())
@@ -336,8 +355,8 @@ GloveStats ConvertGlove(const fs::path& tgz, const fs::path& out, int top_words,
 int ConvertWordNet(const fs::path& dict_dir, const fs::path& word_vectors_file,
                    const fs::path& out) {
   const WordVectors wv = WordVectors::Load(word_vectors_file);
-  const WordNetLexicon lex = WordNetLexicon::FromDictDir(
-      dict_dir, [&](const std::string& w) { return wv.Contains(w); });
+  const WordNetLexicon lex =
+      WordNetLexicon::FromDictDir(dict_dir, [&](const std::string& w) { return wv.Contains(w); });
   lex.Save(out);
   return lex.num_lemmas();
 }
@@ -364,37 +383,37 @@ std::vector<AssetStep> LanguageAssetSteps() {
          const auto vocab_files = VocabularyFiles(o);
          json inputs = {DescribeInput(tgz)};
          for (const auto& f : vocab_files) inputs.push_back(DescribeInput(f));
-         const json stamp = {{"version", kStampVersion},
-                             {"inputs", inputs},
-                             {"top_words", o.glove_top_words}};
+         const json stamp = {
+             {"version", kStampVersion}, {"inputs", inputs}, {"top_words", o.glove_top_words}};
          if (!o.force && AssetUpToDate(out, stamp)) return "up to date: " + out.string();
          const auto extra = ReadVocabularyFiles(vocab_files);
          const GloveStats s = ConvertGlove(tgz, out, o.glove_top_words, extra);
          WriteAssetStamp(out, stamp);
          if (s.vocabulary_missing > 0)
-           spdlog::warn("glove: {} of {} vocabulary words are not in the source", s.vocabulary_missing,
-                        s.vocabulary_words);
+           spdlog::warn("glove: {} of {} vocabulary words are not in the source",
+                        s.vocabulary_missing, s.vocabulary_words);
          return Summary(std::to_string(s.kept_words) + " of " + std::to_string(s.source_words) +
                             " words -> " + out.string(),
                         s.seconds);
        }});
-  steps.push_back(
-      {"wordnet", "WordNet lemmas/synonyms (wordnet-base) -> language/wordnet.txt",
-       [](const AssetOptions& o) -> std::string {
-         const auto t0 = std::chrono::steady_clock::now();
-         const fs::path wv = o.data_dir / "language" / "glove_subset.bin";
-         const fs::path out = o.data_dir / "language" / "wordnet.txt";
-         json inputs = {DescribeInput(wv)};
-         for (const char* f : {"index.noun", "index.verb", "index.adj", "index.adv", "data.noun",
-                               "data.verb", "data.adj", "data.adv", "noun.exc", "verb.exc",
-                               "adj.exc", "adv.exc"})
-           inputs.push_back(DescribeInput(o.wordnet_dir / f));
-         const json stamp = {{"version", kStampVersion}, {"inputs", inputs}};
-         if (!o.force && AssetUpToDate(out, stamp)) return "up to date: " + out.string();
-         const int lemmas = ConvertWordNet(o.wordnet_dir, wv, out);
-         WriteAssetStamp(out, stamp);
-         return Summary(std::to_string(lemmas) + " lemmas -> " + out.string(), Since(t0));
-       }});
+  steps.push_back({"wordnet", "WordNet lemmas/synonyms (wordnet-base) -> language/wordnet.txt",
+                   [](const AssetOptions& o) -> std::string {
+                     const auto t0 = std::chrono::steady_clock::now();
+                     const fs::path wv = o.data_dir / "language" / "glove_subset.bin";
+                     const fs::path out = o.data_dir / "language" / "wordnet.txt";
+                     json inputs = {DescribeInput(wv)};
+                     for (const char* f : {"index.noun", "index.verb", "index.adj", "index.adv",
+                                           "data.noun", "data.verb", "data.adj", "data.adv",
+                                           "noun.exc", "verb.exc", "adj.exc", "adv.exc"})
+                       inputs.push_back(DescribeInput(o.wordnet_dir / f));
+                     const json stamp = {{"version", kStampVersion}, {"inputs", inputs}};
+                     if (!o.force && AssetUpToDate(out, stamp))
+                       return "up to date: " + out.string();
+                     const int lemmas = ConvertWordNet(o.wordnet_dir, wv, out);
+                     WriteAssetStamp(out, stamp);
+                     return Summary(std::to_string(lemmas) + " lemmas -> " + out.string(),
+                                    Since(t0));
+                   }});
   return steps;
 }
 

@@ -1,6 +1,7 @@
 #include "sims/language/embedding_bank.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <numeric>
 
 #include "sims/core/config.h"
@@ -29,7 +30,8 @@ std::vector<StyleMatch> Nearest(const std::vector<BankEntry>& entries, const Eig
     if (entries[i].z.size() != q.size()) continue;
     scored.emplace_back(entries[i].z.dot(q), i);
   }
-  const std::size_t n = std::min<std::size_t>(scored.size(), static_cast<std::size_t>(std::max(k, 0)));
+  const std::size_t n =
+      std::min<std::size_t>(scored.size(), static_cast<std::size_t>(std::max(k, 0)));
   // Ties resolve by insertion order so answers are reproducible.
   std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(n), scored.end(),
                     [](const auto& a, const auto& b) {
@@ -165,6 +167,32 @@ StyleEmbedder StyleEmbedder::Load(const fs::path& dir) {
 
 Eigen::VectorXf StyleEmbedder::Embed(const std::string& caption) const {
   return model_.EncodeTextFeature(encoder_->Encode(caption));
+}
+
+nlohmann::json StyleQueryToJson(const StyleQuery& q) {
+  json caps = json::array(), clips = json::array();
+  for (const auto& m : q.captions)
+    caps.push_back({{"text", m.text}, {"clip", m.clip}, {"cosine", m.cosine}});
+  for (const auto& m : q.clips) clips.push_back({{"clip", m.clip}, {"cosine", m.cosine}});
+  return {{"caption", q.caption},
+          {"z", std::vector<float>(q.z.data(), q.z.data() + q.z.size())},
+          {"captions", caps},
+          {"clips", clips}};
+}
+
+std::string FormatStyleQuery(const StyleQuery& q) {
+  std::string out = "caption: " + json(q.caption).dump() + "\nnearest training captions:\n";
+  char line[64];
+  for (const auto& m : q.captions) {
+    std::snprintf(line, sizeof(line), "  %+.3f  ", m.cosine);
+    out += line + json(m.text).dump() + "  (clip " + m.clip + ")\n";
+  }
+  out += "nearest clips:\n";
+  for (const auto& m : q.clips) {
+    std::snprintf(line, sizeof(line), "  %+.3f  ", m.cosine);
+    out += line + m.clip + "\n";
+  }
+  return out;
 }
 
 StyleQuery StyleEmbedder::Lookup(const std::string& caption, int k) const {

@@ -35,8 +35,9 @@ void MotionTextTrainConfig::Validate() const {
   Require(learning_rate > 0, "learning_rate", "a positive learning rate");
   Require(weight_decay >= 0, "weight_decay", "a non-negative number");
   Require(grad_clip >= 0, "grad_clip", "0 (off) or a positive norm");
-  Require(recon_weight >= 0 && align_weight >= 0 && text_recon_weight >= 0, "recon_weight",
-          "non-negative loss weights");
+  Require(
+      recon_weight >= 0 && align_weight >= 0 && text_recon_weight >= 0 && uniformity_weight >= 0,
+      "recon_weight", "non-negative loss weights");
   Require(threads >= 0, "threads", "0 (all cores) or a positive count");
   Require(log_every > 0, "log_every", "a positive step count");
   Require(checkpoint_every > 0, "checkpoint_every", "a positive step count");
@@ -126,8 +127,8 @@ std::vector<CaptionedSequence> LoadCaptionedSequences(const fs::path& dir) {
   return out;
 }
 
-std::vector<int> WindowFrameIndices(int num_frames, double fps,
-                                    const MotionTextModelConfig& config, double start_fraction) {
+std::vector<int> WindowFrameIndices(int num_frames, double fps, const MotionTextModelConfig& config,
+                                    double start_fraction) {
   SIMS_CHECK(num_frames > 0 && fps > 0);
   std::vector<int> idx(static_cast<std::size_t>(config.seq_frames));
   const double clip_s = num_frames / fps;
@@ -142,8 +143,9 @@ std::vector<int> WindowFrameIndices(int num_frames, double fps,
   } else {
     // Shorter clip: spread the window's samples over the whole clip.
     for (int i = 0; i < config.seq_frames; ++i)
-      idx[static_cast<std::size_t>(i)] = std::min(
-          num_frames - 1, static_cast<int>(static_cast<int64_t>(i) * num_frames / config.seq_frames));
+      idx[static_cast<std::size_t>(i)] =
+          std::min(num_frames - 1,
+                   static_cast<int>(static_cast<int64_t>(i) * num_frames / config.seq_frames));
   }
   return idx;
 }

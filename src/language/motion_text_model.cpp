@@ -85,8 +85,7 @@ torch::Tensor MotionTextNetImpl::TextUp(const torch::Tensor& zt) { return mlp_u-
 torch::Tensor WindowTensor(const Eigen::MatrixXf& window) {
   using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const RowMajor rm = window;
-  return torch::from_blob(const_cast<float*>(rm.data()), {1, rm.rows(), rm.cols()},
-                          torch::kFloat)
+  return torch::from_blob(const_cast<float*>(rm.data()), {1, rm.rows(), rm.cols()}, torch::kFloat)
       .clone();
 }
 
@@ -124,8 +123,7 @@ void SaveModuleAtomic(const torch::nn::Module& module, const fs::path& path) {
 
 MotionTextModel::MotionTextModel(std::shared_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
-MotionTextModel::MotionTextModel(const MotionTextModelConfig& config, int text_dim,
-                                 uint64_t seed)
+MotionTextModel::MotionTextModel(const MotionTextModelConfig& config, int text_dim, uint64_t seed)
     : impl_(std::make_shared<Impl>()) {
   ValidateConfig(config, "model");
   SIMS_CHECK(text_dim > 0);
@@ -180,8 +178,8 @@ MotionTextModel MotionTextModel::Load(const fs::path& dir) {
   const auto config = ConfigFromJson<MotionTextModelConfig>(j["model"], meta.string() + ":model");
   TextEncoderConfig text_config;
   if (j.contains("text_encoder"))
-    text_config = ConfigFromJson<TextEncoderConfig>(j["text_encoder"],
-                                                    meta.string() + ":text_encoder");
+    text_config =
+        ConfigFromJson<TextEncoderConfig>(j["text_encoder"], meta.string() + ":text_encoder");
   auto impl = std::make_shared<Impl>();
   impl->config = config;
   impl->text_dim = j["text_dim"].get<int>();

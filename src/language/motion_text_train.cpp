@@ -25,7 +25,7 @@ using nlohmann::json;
 namespace {
 
 constexpr const char* kCsvHeader =
-    "step,loss,recon,align,text_recon,learning_rate,steps_per_s,elapsed_s";
+    "step,loss,recon,align,text_recon,uniformity,learning_rate,steps_per_s,elapsed_s";
 
 struct Caption {
   int clip;
@@ -56,8 +56,8 @@ void SaveCheckpoint(const fs::path& path, internal::MotionTextNet& net,
   }
 }
 
-int LoadCheckpoint(const fs::path& path, internal::MotionTextNet& net,
-                   torch::optim::Optimizer& opt, Rng* rng) {
+int LoadCheckpoint(const fs::path& path, internal::MotionTextNet& net, torch::optim::Optimizer& opt,
+                   Rng* rng) {
   try {
     torch::serialize::InputArchive root, model, optim;
     root.load_from(path.string());
@@ -151,10 +151,9 @@ MotionTextLosses TrainMotionText(const MotionTextTrainConfig& config,
   const Eigen::MatrixXf text_features = encoder.EncodeBatch(texts);
   using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const RowMajor text_rm = text_features;
-  const torch::Tensor text_t =
-      torch::from_blob(const_cast<float*>(text_rm.data()), {text_rm.rows(), text_rm.cols()},
-                       torch::kFloat)
-          .clone();
+  const torch::Tensor text_t = torch::from_blob(const_cast<float*>(text_rm.data()),
+                                                {text_rm.rows(), text_rm.cols()}, torch::kFloat)
+                                   .clone();
 
   MotionTextModel model(mc, encoder.dim(), config.seed);
   auto& state = MotionTextTrainerAccess::State(model);
@@ -178,8 +177,9 @@ MotionTextLosses TrainMotionText(const MotionTextTrainConfig& config,
       net->feat_std[i] = static_cast<float>(std::max(std::sqrt(var[i]), 1e-3));
     }
   }
-  torch::optim::AdamW opt(net->parameters(), torch::optim::AdamWOptions(config.learning_rate)
-                                                 .weight_decay(config.weight_decay));
+  torch::optim::AdamW opt(
+      net->parameters(),
+      torch::optim::AdamWOptions(config.learning_rate).weight_decay(config.weight_decay));
   Rng rng(config.seed * 0x9E3779B97F4A7C15ULL + 17);
   int step = 0;
   if (have_ckpt) {
@@ -190,9 +190,10 @@ MotionTextLosses TrainMotionText(const MotionTextTrainConfig& config,
   PrepareCsv(csv_path, step);
   std::ofstream csv(csv_path, std::ios::app);
 
-  spdlog::info("train_text_motion: {} clips, {} captions, text {} ({}-d), {} parameters, {} threads",
-               data.size(), captions.size(), encoder.Describe(), encoder.dim(),
-               model.num_parameters(), ThreadCount());
+  spdlog::info(
+      "train_text_motion: {} clips, {} captions, text {} ({}-d), {} parameters, {} threads",
+      data.size(), captions.size(), encoder.Describe(), encoder.dim(), model.num_parameters(),
+      ThreadCount());
   ProgressReporter progress("train_text_motion", config.steps, "steps");
   const auto t0 = std::chrono::steady_clock::now();
   const int start_step = step;
@@ -217,8 +218,8 @@ MotionTextLosses TrainMotionText(const MotionTextTrainConfig& config,
         mask[std::size_t(i)] = 1.f;
       }
     }
-    const torch::Tensor x = torch::from_blob(xbuf.data(), {b, mc.seq_frames, mc.feature_dim},
-                                             torch::kFloat);
+    const torch::Tensor x =
+        torch::from_blob(xbuf.data(), {b, mc.seq_frames, mc.feature_dim}, torch::kFloat);
     const torch::Tensor t = text_t.index_select(0, torch::tensor(cap_idx, torch::kInt64));
     const torch::Tensor m = torch::tensor(mask);
     const torch::Tensor denom = m.sum().clamp_min(1.0);
@@ -229,11 +230,18 @@ MotionTextLosses TrainMotionText(const MotionTextTrainConfig& config,
     const torch::Tensor cos = torch::cosine_similarity(z, td, 1, 1e-8);
     const torch::Tensor align = ((1 - cos) * m).sum() / denom;
     const torch::Tensor text_recon = ((net->TextUp(td) - t).norm(2, {1}) * m).sum() / denom;
+    // Pairwise squared distances of unit vectors: 2 - 2 z_i.z_j, off-diagonal pairs only.
+    const torch::Tensor sq = (2 - 2 * torch::mm(z, z.t())).clamp_min(0);
+    const torch::Tensor off = 1 - torch::eye(b);
+    const torch::Tensor uniformity =
+        b > 1 ? torch::log(((-2 * sq).exp() * off).sum() / off.sum()) : torch::zeros({});
     const torch::Tensor loss = config.recon_weight * recon + config.align_weight * align +
-                               config.text_recon_weight * text_recon;
+                               config.text_recon_weight * text_recon +
+                               config.uniformity_weight * uniformity;
     opt.zero_grad();
     loss.backward();
-    if (config.grad_clip > 0) torch::nn::utils::clip_grad_norm_(net->parameters(), config.grad_clip);
+    if (config.grad_clip > 0)
+      torch::nn::utils::clip_grad_norm_(net->parameters(), config.grad_clip);
     opt.step();
     ++step;
 
@@ -241,23 +249,30 @@ MotionTextLosses TrainMotionText(const MotionTextTrainConfig& config,
     running.recon += recon.item<double>();
     running.align += align.item<double>();
     running.text_recon += text_recon.item<double>();
+    running.uniformity += uniformity.item<double>();
     ++running_n;
     const bool final_step = step == config.steps;
     if (step % config.log_every == 0 || final_step) {
-      last = {step, running.total / running_n, running.recon / running_n,
-              running.align / running_n, running.text_recon / running_n};
+      last = {step,
+              running.total / running_n,
+              running.recon / running_n,
+              running.align / running_n,
+              running.text_recon / running_n,
+              running.uniformity / running_n};
       running = {};
       running_n = 0;
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const double rate = elapsed > 0 ? (step - start_step) / elapsed : 0.0;
       char row[256];
-      std::snprintf(row, sizeof(row), "%d,%.6f,%.6f,%.6f,%.6f,%g,%.3f,%.2f\n", step, last.total,
-                    last.recon, last.align, last.text_recon, config.learning_rate, rate, elapsed);
+      std::snprintf(row, sizeof(row), "%d,%.6f,%.6f,%.6f,%.6f,%.6f,%g,%.3f,%.2f\n", step,
+                    last.total, last.recon, last.align, last.text_recon, last.uniformity,
+                    config.learning_rate, rate, elapsed);
       csv << row << std::flush;
       char extra[160];
-      std::snprintf(extra, sizeof(extra), "loss %.4f (recon %.4f, align %.4f, text %.4f)",
-                    last.total, last.recon, last.align, last.text_recon);
+      std::snprintf(extra, sizeof(extra),
+                    "loss %.4f (recon %.4f, align %.4f, text %.4f, unif %.3f)", last.total,
+                    last.recon, last.align, last.text_recon, last.uniformity);
       progress.Update(step, extra);
     }
     if (step % config.checkpoint_every == 0 || final_step)
@@ -272,7 +287,8 @@ MotionTextLosses TrainMotionText(const MotionTextTrainConfig& config,
   for (std::size_t i = 0; i < captions.size(); ++i)
     bank.AddCaption(captions[i].text, data[std::size_t(captions[i].clip)].clip_name,
                     model.EncodeTextFeature(text_features.row(Eigen::Index(i)).transpose()));
-  for (const auto& seq : data) bank.AddClip(seq.clip_name, model.EncodeClip(seq, config.bank_windows));
+  for (const auto& seq : data)
+    bank.AddClip(seq.clip_name, model.EncodeClip(seq, config.bank_windows));
   bank.Save(out / "bank.json");
   spdlog::info("wrote {} (model.pt, model.json, bank.json, train_log.csv)", out.string());
   return last;

@@ -13,7 +13,7 @@ namespace sims::language::internal {
 
 /// One regular file inside the archive.
 struct TarEntry {
-  std::string name;  ///< Path inside the archive ("package/...").
+  std::string name;   ///< Path inside the archive ("package/...").
   uint64_t size = 0;  ///< Bytes of content.
 };
 

@@ -43,11 +43,11 @@ std::vector<std::pair<int, char32_t>> ByteStandIns() {
 }  // namespace
 
 struct ClipTokenizer::Impl {
-  std::vector<std::string> byte_encoder;              // byte -> stand-in (UTF-8)
-  std::unordered_map<char32_t, int> byte_decoder;     // stand-in -> byte
-  std::vector<std::string> vocab;                     // id -> symbol
-  std::unordered_map<std::string, int> encoder;       // symbol -> id
-  std::unordered_map<std::string, int> ranks;         // "first second" -> merge rank
+  std::vector<std::string> byte_encoder;           // byte -> stand-in (UTF-8)
+  std::unordered_map<char32_t, int> byte_decoder;  // stand-in -> byte
+  std::vector<std::string> vocab;                  // id -> symbol
+  std::unordered_map<std::string, int> encoder;    // symbol -> id
+  std::unordered_map<std::string, int> ranks;      // "first second" -> merge rank
   int sot = 0, eot = 0;
 };
 
@@ -77,8 +77,8 @@ ClipTokenizer ClipTokenizer::FromMergesText(const std::string& text, const std::
     const std::size_t space = line.find(' ');
     if (space == std::string::npos || space == 0 || space + 1 == line.size() ||
         line.find(' ', space + 1) != std::string::npos)
-      ThrowInputError(source, "line " + std::to_string(line_no),
-                      "a BPE merge \"<first> <second>\"", line.substr(0, 60));
+      ThrowInputError(source, "line " + std::to_string(line_no), "a BPE merge \"<first> <second>\"",
+                      line.substr(0, 60));
     const int rank = static_cast<int>(impl->ranks.size());
     if (!impl->ranks.emplace(line, rank).second)
       ThrowInputError(source, "line " + std::to_string(line_no), "each merge listed once",

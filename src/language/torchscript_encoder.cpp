@@ -16,7 +16,8 @@ class TorchScriptTextEncoder : public TextEncoder {
  public:
   explicit TorchScriptTextEncoder(const TextEncoderConfig& config)
       : config_(config),
-        tok_(config.bpe.empty() ? ClipTokenizer::LoadDefault() : ClipTokenizer::FromFile(config.bpe)) {
+        tok_(config.bpe.empty() ? ClipTokenizer::LoadDefault()
+                                : ClipTokenizer::FromFile(config.bpe)) {
     const std::string& path = config.torchscript_path;
     try {
       module_ = torch::jit::load(path, torch::kCPU);
@@ -56,8 +57,8 @@ class TorchScriptTextEncoder : public TextEncoder {
     torch::Tensor ids = torch::zeros({b, l}, torch::kInt64);
     auto acc = ids.accessor<int64_t, 2>();
     for (int64_t i = 0; i < b; ++i) {
-      const auto row = tok_.EncodeForClip(captions[static_cast<std::size_t>(i)],
-                                          static_cast<int>(l));
+      const auto row =
+          tok_.EncodeForClip(captions[static_cast<std::size_t>(i)], static_cast<int>(l));
       for (int64_t j = 0; j < l; ++j) acc[i][j] = row[static_cast<std::size_t>(j)];
     }
     torch::Tensor out;

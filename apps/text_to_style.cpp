@@ -1,0 +1,36 @@
+// Shows how a caption is understood: its 64-d style embedding z and the nearest training
+// captions and clips by cosine similarity.
+//   text_to_style "a person walks sadly" [--model runs/text_motion] [--top 5] [--json]
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "sims/core/log.h"
+#include "sims/language/embedding_bank.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Caption -> style embedding z, with the nearest training captions and clips"};
+  std::string caption, model_dir = "runs/text_motion", log_level;
+  int top = 5;
+  bool as_json = false;
+  app.add_option("caption", caption, "the caption to embed")->required();
+  app.add_option("--model", model_dir, "train_text_motion output folder");
+  app.add_option("--top", top, "how many neighbours to list")->check(CLI::PositiveNumber);
+  app.add_flag("--json", as_json, "print JSON instead of text");
+  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    sims::InitLogging(log_level.empty() ? "warn" : log_level);
+    const auto embedder = sims::language::StyleEmbedder::Load(model_dir);
+    const auto query = embedder.Lookup(caption, top);
+    if (as_json)
+      std::cout << sims::language::StyleQueryToJson(query).dump(2) << "\n";
+    else
+      std::cout << "text encoder: " << embedder.encoder().Describe() << "\n"
+                << sims::language::FormatStyleQuery(query);
+  } catch (const std::exception& e) {
+    std::cerr << "text_to_style: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
