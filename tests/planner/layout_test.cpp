@@ -363,6 +363,37 @@ TEST(LayoutTest, DatabaseRoundTripsThroughJson) {
   }
 }
 
+TEST(LayoutTest, IndexesThreeDFrontFoldersAndReloadsThem) {
+  auto front = sims::testing::TestData("scene/front3d/3D-FRONT");
+  auto future = sims::testing::TestData("scene/front3d/3D-FUTURE-model");
+  auto broken = sims::testing::TempDir("planner_front3d");
+  std::ofstream(broken / "broken.json") << "{\"furniture\": 3}";
+  std::vector<std::string> log;
+  LayoutDatabase db =
+      BuildLayoutDatabase(false, false, {front, broken}, future, LayoutConfig{}, &log);
+  ASSERT_FALSE(db.layouts.empty());
+  std::set<std::string> categories;
+  for (const LayoutEntry& e : db.layouts) {
+    EXPECT_EQ(e.source.kind, "front3d");
+    for (const LayoutNode& n : e.nodes) categories.insert(n.category);
+  }
+  EXPECT_TRUE(categories.count("sofa")) << ::testing::PrintToString(categories);
+  bool skipped = false;
+  for (const std::string& l : log) skipped = skipped || l.find("skipped") != std::string::npos;
+  EXPECT_TRUE(skipped) << ::testing::PrintToString(log);
+  // A plan on it materialises through the 3D-FRONT loader again.
+  LongScript ls =
+      Script(R"({"keyframes": [{"skill": "loco"}, {"skill": "sit", "furniture": "sofa"}]})");
+  LayoutMatch m = MatchLayouts(ls, db);
+  ASSERT_TRUE(m.bindings[1].placed);
+  scene::Scene s = MaterializeLayout(m.layout);
+  bool found = false;
+  for (const scene::Object& o : s.objects) found = found || o.instance == m.bindings[1].object;
+  EXPECT_TRUE(found) << m.bindings[1].object;
+  EXPECT_THROW(BuildLayoutDatabase(false, false, {broken / "nope"}, future, LayoutConfig{}, &log),
+               Error);
+}
+
 TEST(LayoutTest, BuiltinHouseServesAThemeAndMaterialises) {
   std::vector<std::string> log;
   LayoutDatabase db = BuildLayoutDatabase(true, false, {}, {}, LayoutConfig{}, &log);
