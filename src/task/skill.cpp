@@ -8,6 +8,11 @@
 #include "sims/sim/features.h"
 #include "sims/sim/scene_physics.h"
 #include "sims/task/walk.h"
+#include "sims/task/sit.h"
+#include "sims/task/lie.h"
+#include "sims/task/reach.h"
+#include "sims/task/getup.h"
+#include "sims/task/unified.h"
 
 namespace sims::task {
 
@@ -25,6 +30,7 @@ void SkillConfig::Validate() const {
   Require(spawn_max_distance >= spawn_min_distance && spawn_min_distance >= 0, "spawn_max_distance",
           "a distance ≥ spawn_min_distance ≥ 0");
   Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
+  Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
 }
 
 Skill::Skill(const SkillConfig& config, const SkillContext& context)
@@ -146,7 +152,15 @@ std::vector<double> Skill::SaveSkillState(int) const { return {}; }
 void Skill::LoadSkillState(int, const double*, size_t) {}
 
 const std::vector<SkillInfo>& GetSkills() {
-  static const std::vector<SkillInfo> skills = {WalkSkillInfo()};
+  static const std::vector<SkillInfo> skills = {
+      WalkSkillInfo(),
+      SitSkillInfo(),
+      LieSkillInfo(),
+      ReachSkillInfo(),
+      GetUpSkillInfo(),
+      SitGetUpSkillInfo(),
+      UnifiedSkillInfo(),
+  };
   return skills;
 }
 

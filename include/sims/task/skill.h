@@ -67,6 +67,8 @@ struct SkillConfig {
   double spawn_min_distance = 1.0;             ///< Character spawn distance from the object (m).
   double spawn_max_distance = 4.0;             ///< ... (m).
   double contact_success_threshold = 0.2;      ///< Sit/reach 0.20 m, lie 0.30 m.
+  double max_contact_force = 1e4;  ///< Net contact force (N) that ends an episode (0 = off).
+  bool sit_back_contact = false;   ///< Sit: also reward the torso touching the back rest.
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -89,6 +91,8 @@ struct SkillConfig {
     a->Visit(SIMS_NVP(spawn_min_distance));
     a->Visit(SIMS_NVP(spawn_max_distance));
     a->Visit(SIMS_NVP(contact_success_threshold));
+    a->Visit(SIMS_NVP(max_contact_force));
+    a->Visit(SIMS_NVP(sit_back_contact));
   }
   /// Checks ranges.
   void Validate() const;

@@ -1,0 +1,107 @@
+// Rewards and success rules shared by the contact skills.
+//
+// Contact skills (sit, lie, reach; SIMS supplementary, ARCHITECTURE §3):
+//   d² = ‖x* − x_root‖² (xy), x* the anchor the character walks to
+//   far (d² > 0.5): r = 0.6·r_near + 0.4·r_far;   near: r = 0.6·r_near + 0.4
+//   r_far  = 0.5·exp(−0.5·d²) + 0.4·exp(−2·(v* − d*·ẋ)²) + 0.1·(d*·d_facing)²
+//   r_near = exp(−10·Σ_j ‖g_j − x_j‖²), g_j the nearest point of joint j's goal part.
+//
+// UniHSI contact pairs (REFERENCE_FACTS §6, the unified controller): per joint a contact term
+// r_c = exp(−10·d²) (contact) or 1 − exp(−10·d²) (not contact) and a direction term
+// r_dir = max(0, dir·normalize(joint − target)) (1 without a direction or for not-contact),
+// combined with adaptive weights w_i = (1 − r_i)/(n − Σr + 1e-4); then over the 15 joints
+// (joints without a pair count 1), then with a hand-facing term. A step without contacts is a
+// walking step toward a stand point: exp(−0.5·|Δp|²), velocity and facing terms, adaptively.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "sims/sim/humanoid.h"
+
+namespace sims::task {
+
+/// Squared xy distance beyond which the contact reward is in its "far" form (m²).
+inline constexpr double kFarDistanceSq = 0.5;
+
+/// The contact-skill reward for one state (see the file comment). `contact_sq_sum` is
+/// Σ_j ‖g_j − x_j‖² over the skill's goal joints; `facing` is the unit heading direction.
+double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
+                     const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
+                     double target_speed, double contact_sq_sum);
+
+/// What a UniHSI pair asks of a joint.
+enum class ContactType : int {
+  kNone = 0,        ///< "none": not cared about (reward 1, ignored by success).
+  kContact = 1,     ///< "contact": touch the target.
+  kNotContact = 2,  ///< "not contact": stay away from the target.
+};
+
+/// Parses "contact", "not contact" (also "not_contact", "noncontact") and "none"; returns
+/// false for anything else.
+bool ParseContactType(const std::string& text, ContactType* type);
+
+/// UniHSI's world-frame direction words: up (0,0,1), down, left (0,1,0), right, front
+/// (1,0,0), back, none (0). Returns false for unknown words.
+bool ParseDirection(const std::string& text, Eigen::Vector3d* direction);
+
+/// Adaptive weights w_i = (1 − r_i)/(n − Σ r + 1e-4) (UniHSI): writes them to `weights` (may
+/// be null) and returns Σ w_i·r_i. Weak terms get the most weight; the weights sum to
+/// (n − Σr)/(n − Σr + 1e-4) ≈ 1.
+double AdaptiveCombine(const double* rewards, int n, double* weights = nullptr);
+
+/// One joint's pair for the UniHSI reward.
+struct JointPair {
+  ContactType type = ContactType::kNone;                ///< kNone = no pair on this joint.
+  Eigen::Vector3d joint = Eigen::Vector3d::Zero();      ///< Joint position (world).
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();     ///< Nearest target point (world).
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< Required direction, or zero.
+};
+
+/// The reward of one pair and its success distance.
+struct PairReward {
+  double reward = 1.0;     ///< Adaptive combination of the contact and direction terms.
+  double contact = 1.0;    ///< r_c.
+  double direction = 1.0;  ///< r_dir.
+  double err2 = 0.0;       ///< ‖target − joint‖², +1 when r_dir < 0.5 (blocks success).
+};
+
+/// The UniHSI reward of one pair (kNone → reward 1, err2 0).
+PairReward ContactPairReward(const JointPair& pair);
+
+/// The UniHSI reward of a whole step.
+struct StepReward {
+  double reward = 0.0;                                ///< Total task reward.
+  std::array<double, sim::kNumContactJoints> err2{};  ///< Per-joint success distance (0 if none).
+  double walk_err2 = 0.0;  ///< |stand − root|² (3-d) of a walking step, 0 otherwise.
+  bool walking = false;    ///< The step had no pairs.
+};
+
+/// UniHSI step reward: the adaptive contact-pair reward, or the walking-step reward toward
+/// `stand_point` (3-d, absolute z) when no joint has a pair. `root_velocity` is world-frame.
+StepReward UniHsiStepReward(const std::array<JointPair, sim::kNumContactJoints>& pairs,
+                            const Eigen::Vector3d& root, const Eigen::Vector3d& root_velocity,
+                            const Eigen::Vector2d& facing, const Eigen::Vector3d& stand_point,
+                            double target_speed = 1.0);
+
+/// UniHSI's step rule after a control step.
+struct StepCheck {
+  bool triggered = false;  ///< The step is done (loose thresholds, still, no big force).
+  bool advance = false;    ///< ... and it passed the tight thresholds: go to the next step.
+};
+
+/// Done trigger: every pair holds loosely (contact err² < 0.3, not contact err² ≥ 0.1; walking
+/// |Δp|² < 0.1), no excessive force, and the character has been still for more than 10
+/// steps. Advance: contact err² < 0.1 and not contact err² ≥ 0.05 (walking: |Δp|² < 0.1).
+StepCheck CheckUniHsiStep(const std::array<ContactType, sim::kNumContactJoints>& types,
+                          const StepReward& reward, bool big_force, int still_steps);
+
+/// UniHSI's stillness test: the largest L1 norm of a body's linear velocity is below 0.6.
+inline constexpr double kStillVelocityL1 = 0.6;
+
+/// Contact error of one pair (eval): ‖d‖ for contact, max(0.3 − ‖d‖, 0) for not contact.
+double PairContactError(ContactType type, double distance);
+
+}  // namespace sims::task

@@ -1,0 +1,330 @@
+// The training ground, object choice, clip placement and step bookkeeping shared by the object
+// skills. Per-env state lives in vectors indexed by env id (the env calls the hooks of
+// different envs concurrently).
+#include "sims/task/object_skill.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sims/core/error.h"
+#include "sims/scene/builtin.h"
+#include "sims/scene/contact_targets.h"
+#include "sims/sim/features.h"
+
+namespace sims::task {
+
+namespace {
+// Free floor: the precomputed height may be this high (rugs) and must be so around a point.
+constexpr double kFloorTolerance = 0.05;
+// Gap between a footprint and a stand point (m).
+constexpr double kStandDistance = 0.45;
+
+double YawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+
+scene::Aabb PartLocalBounds(const scene::Object& o, int part) {
+  const Eigen::Isometry3d X_OW = o.X_WO.inverse();
+  scene::Aabb b;
+  for (const auto& v : o.parts[part].mesh.vertices) b.Extend(X_OW * v);
+  return b;
+}
+
+int PartIndex(const scene::Object& o, const std::string& name) {
+  for (size_t k = 0; k < o.parts.size(); ++k)
+    if (o.parts[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+bool FreeAt(const scene::SceneHeightGrid& grid, const Eigen::Vector2d& p, double radius) {
+  if (grid.Height(p.x(), p.y()) >= kFloorTolerance) return false;
+  for (int k = 0; k < 8; ++k) {
+    const double a = k * M_PI / 4;
+    if (grid.Height(p.x() + radius * std::cos(a), p.y() + radius * std::sin(a)) >= kFloorTolerance)
+      return false;
+  }
+  return true;
+}
+}  // namespace
+
+scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
+                                 const std::vector<std::string>& default_categories) {
+  const auto& cats =
+      config.object_categories.empty() ? default_categories : config.object_categories;
+  if (cats.empty())
+    ThrowInputError("skill config", "object_categories", "at least one furniture category", "none");
+  scene::Scene s;
+  s.name = "training_ground_" + config.skill;
+  const int n = std::max(1, config.num_objects);
+  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  for (int i = 0; i < n; ++i) {
+    const std::string& cat = cats[i % cats.size()];
+    scene::Object o =
+        scene::RandomFurniture(cat, rng, config.held_out_objects, cat + "_" + std::to_string(i));
+    const double yaw = rng.Uniform(-M_PI, M_PI);
+    scene::PlaceObject(&o, (i % side) * kTrainingGroundSpacing, (i / side) * kTrainingGroundSpacing,
+                       yaw);
+    s.AddObject(std::move(o));
+  }
+  return s;
+}
+
+ObjectGeometry DescribeObject(const scene::Scene& scene, int index,
+                              const scene::SceneHeightGrid& grid) {
+  const scene::Object& o = scene.objects[index];
+  ObjectGeometry g;
+  g.object = index;
+  g.X_WO = o.X_WO;
+  g.yaw = YawOf(o.X_WO.linear());
+  g.local = o.LocalBounds();
+  const Eigen::Vector3d c = g.local.center();
+  g.center = (o.X_WO * Eigen::Vector3d(c.x(), c.y(), 0)).head<2>();
+  g.radius = 0.5 * (g.local.max - g.local.min).head<2>().norm();
+  g.seat = PartIndex(o, "seat surface");
+  g.back = PartIndex(o, "back");
+  g.left_arm = PartIndex(o, "left arm");
+  g.right_arm = PartIndex(o, "right arm");
+  g.mattress = PartIndex(o, "mattress");
+  for (size_t k = 0; k < o.parts.size(); ++k)
+    if (o.parts[k].name == "pillow") g.pillows.push_back(static_cast<int>(k));
+  if (g.seat >= 0) g.seat_local = PartLocalBounds(o, g.seat);
+  if (g.mattress >= 0) g.mattress_local = PartLocalBounds(o, g.mattress);
+  const double d = kStandDistance;
+  const Eigen::Vector2d candidates[] = {{g.local.max.x() + d, c.y()},
+                                        {c.x(), g.local.max.y() + d},
+                                        {c.x(), g.local.min.y() - d},
+                                        {g.local.min.x() - d, c.y()}};
+  for (const auto& q : candidates) {
+    const Eigen::Vector3d p = o.X_WO * Eigen::Vector3d(q.x(), q.y(), 0);
+    if (FreeAt(grid, p.head<2>(), 0.25)) g.stand_points.emplace_back(p.x(), p.y(), 0.0);
+  }
+  return g;
+}
+
+ClipPlacement ClipPlacement::Align(const Eigen::Vector2d& p_world, double yaw_world,
+                                   const Eigen::Vector2d& p_clip, double yaw_clip, double dz) {
+  ClipPlacement c;
+  c.yaw = yaw_world - yaw_clip;
+  c.offset = p_world - Eigen::Rotation2Dd(c.yaw) * p_clip;
+  c.dz = dz;
+  return c;
+}
+
+sim::HumanoidPose ClipPlacement::Apply(const sim::HumanoidPose& p) const {
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  sim::HumanoidPose out = p;
+  out.root_pos = Apply(p.root_pos);
+  out.root_rot = q * p.root_rot;
+  out.root_lin_vel = q * p.root_lin_vel;
+  out.root_ang_vel = q * p.root_ang_vel;
+  return out;
+}
+
+Eigen::Vector3d ClipPlacement::Apply(const Eigen::Vector3d& p) const {
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  return q * p + Eigen::Vector3d(offset.x(), offset.y(), dz);
+}
+
+bool ClipFurnitureFrame(const motion::MotionClip& clip, const ObjectGeometry& g,
+                        double lateral_offset, Eigen::Vector2d* p_clip, double* yaw_clip,
+                        double* dz) {
+  const auto& m = clip.meta();
+  const auto& prm = m.params;
+  for (const char* key :
+       {"furniture_height", "furniture_width", "furniture_front_x", "furniture_center_y"})
+    if (!prm.count(key)) return false;
+  const double h = prm.at("furniture_height"), w = prm.at("furniture_width");
+  const double fx = prm.at("furniture_front_x"), cy = prm.at("furniture_center_y");
+  const bool bed = m.skill == "lie" ||
+                   std::find(m.furniture.begin(), m.furniture.end(), "bed") != m.furniture.end();
+  if (!bed) {
+    // Seat clips: the character faces +x with the seat behind it, seat front edge at x = fx;
+    // the object faces the same way (+x is a seat's front).
+    if (g.seat < 0) return false;
+    const double sy = 0.5 * (g.seat_local.min.y() + g.seat_local.max.y()) + lateral_offset;
+    *p_clip = Eigen::Vector2d(fx - g.seat_local.max.x(), cy - sy);
+    *yaw_clip = 0;
+    *dz = g.seat_local.max.z() - h;
+    return true;
+  }
+  // Bed clips: the bed's long axis is the clip's y with the head toward +y (−y when mirrored);
+  // the character approaches its long side from +x. A procedural bed's long axis is its x
+  // with the headboard at −x, so object −x ↦ clip ±y and the mattress edge ↦ x = fx.
+  if (g.mattress < 0) return false;
+  const double s = m.mirrored ? -1.0 : 1.0;
+  const double ly_edge = s > 0 ? g.mattress_local.max.y() : g.mattress_local.min.y();
+  const double lx_head = g.mattress_local.min.x();
+  const double y_head = cy + s * w / 2;
+  *p_clip = Eigen::Vector2d(fx - s * ly_edge, y_head + s * lx_head);
+  *yaw_clip = -s * M_PI / 2;
+  *dz = g.mattress_local.max.z() - h;
+  return true;
+}
+
+Eigen::Vector2d FacingOf(const sim::HumanoidPose& pose) {
+  const double h = sim::HeadingAngle(pose.root_rot);
+  return {std::cos(h), std::sin(h)};
+}
+
+Eigen::Vector3d NearestOnPart(const scene::Scene& scene, int object, int part,
+                              const Eigen::Vector3d& p) {
+  return scene::NearestPointOnPart(scene.objects[object].parts[part], p);
+}
+
+ObjectSkill::ObjectSkill(const SkillConfig& config, const SkillContext& context)
+    : Skill(config, context) {
+  SIMS_CHECK(context.scene != nullptr);
+  const int n = context.num_envs;
+  object_.assign(n, 0);
+  hold_.assign(n, 0);
+  override_.assign(n, -1);
+  error_.assign(n, 0.0);
+}
+
+void ObjectSkill::CollectObjects(const std::string& what) {
+  const scene::Scene& s = *context_.scene;
+  const auto& cats = config_.object_categories;
+  for (int i = 0; i < static_cast<int>(s.objects.size()); ++i) {
+    if (!cats.empty() && std::find(cats.begin(), cats.end(), s.objects[i].category) == cats.end())
+      continue;
+    ObjectGeometry g = DescribeObject(s, i, *context_.height_grid);
+    if (Accepts(g)) objects_.push_back(std::move(g));
+  }
+  if (objects_.empty())
+    ThrowInputError("scene '" + s.name + "'", "objects", "at least one " + what,
+                    std::to_string(s.objects.size()) + " objects, none suitable");
+}
+
+void ObjectSkill::SetObjectOverride(int env_id, int k) {
+  SIMS_CHECK(k >= -1 && k < static_cast<int>(objects_.size()));
+  override_[env_id] = k;
+}
+
+uint32_t ObjectSkill::contact_body_mask() const {
+  using namespace sim;
+  return (1u << kLeftFoot) | (1u << kRightFoot) | (1u << kLeftHand) | (1u << kRightHand) |
+         (1u << kPelvis) | (1u << kLeftThigh) | (1u << kRightThigh) | (1u << kHead);
+}
+
+double ObjectSkill::ContactForce(const sim::EnvView& view) {
+  // The free joint's translational constraint force is the sum of all contact forces on the
+  // humanoid (self-contacts cancel); qfrc_constraint is left from the last physics step.
+  const double* f = view.data->qfrc_constraint + view.humanoid->root_qvel_adr();
+  return Eigen::Vector3d(f[0], f[1], f[2]).norm();
+}
+
+void ObjectSkill::SampleTask(int, Rng&) {}
+
+bool ObjectSkill::ReferenceInit(int, Rng&, sim::InitialState*) { return false; }
+
+bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
+  return FreeAt(*context_.height_grid, p, radius);
+}
+
+Eigen::Vector2d ObjectSkill::SpawnPoint(const ObjectGeometry& g, Rng& rng) const {
+  Eigen::Vector2d p = g.center;
+  for (int attempt = 0; attempt < 32; ++attempt) {
+    const double r = g.radius + rng.Uniform(config_.spawn_min_distance, config_.spawn_max_distance);
+    const double a = rng.Uniform(-M_PI, M_PI);
+    p = g.center + r * Eigen::Vector2d(std::cos(a), std::sin(a));
+    if (FreeFloor(p, 0.35)) return p;
+  }
+  return p;
+}
+
+void ObjectSkill::DefaultInit(int env_id, Rng& rng, sim::InitialState* init) {
+  const Eigen::Vector2d p = SpawnPoint(geometry(env_id), rng);
+  const double yaw = rng.Uniform(-M_PI, M_PI);
+  init->pose.root_pos.x() = p.x();
+  init->pose.root_pos.y() = p.y();
+  init->pose.root_rot = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+  const auto& clips = ReferenceClips();
+  style_[env_id] = clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+}
+
+void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
+  const int n = static_cast<int>(objects_.size());
+  object_[env_id] =
+      override_[env_id] >= 0 ? override_[env_id] : static_cast<int>(rng.UniformInt(n));
+  hold_[env_id] = 0;
+  error_[env_id] = 0;
+  SampleTask(env_id, rng);
+  const bool try_reference =
+      context_.motions && !ReferenceClips().empty() && rng.Bernoulli(config_.reference_init_prob);
+  if (!(try_reference && ReferenceInit(env_id, rng, init))) DefaultInit(env_id, rng, init);
+}
+
+void ObjectSkill::PlaceReference(int env_id, int clip, double t, const ClipPlacement& placement,
+                                 sim::InitialState* init) {
+  const motion::ReferenceState ref = context_.motions->StateAt(clip, t);
+  init->pose = placement.Apply(ref.pose);
+  init->history.clear();
+  for (const auto& h : ref.history) init->history.push_back(placement.Apply(h));
+  init->reference = true;
+  style_[env_id] = clip;
+}
+
+int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g,
+                                     Rng& rng, ClipPlacement* placement) const {
+  if (!context_.motions) return -1;
+  // A random lateral seat position on wide seats (sofas), so envs do not all use the middle.
+  double lateral = 0;
+  if (g.seat >= 0) {
+    const double half = 0.5 * (g.seat_local.max.y() - g.seat_local.min.y()) - 0.35;
+    if (half > 0) lateral = rng.Uniform(-half, half);
+  }
+  std::vector<int> fitting;
+  std::vector<ClipPlacement> placements;
+  for (int c : clips) {
+    Eigen::Vector2d p_clip;
+    double yaw_clip = 0, dz = 0;
+    if (!ClipFurnitureFrame(context_.motions->clip(c), g, lateral, &p_clip, &yaw_clip, &dz))
+      continue;
+    if (std::abs(dz) > kMaxClipHeightMismatch) continue;
+    fitting.push_back(c);
+    placements.push_back(
+        ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz));
+  }
+  if (fitting.empty()) return -1;
+  const int k = static_cast<int>(rng.UniformInt(static_cast<int64_t>(fitting.size())));
+  *placement = placements[k];
+  return fitting[k];
+}
+
+sim::TaskStepResult ObjectSkill::Finish(const sim::EnvView& view, double reward, bool success) {
+  const int i = view.env_id;
+  sim::TaskStepResult r;
+  r.reward = static_cast<float>(reward);
+  r.success = success;
+  hold_[i] = success ? hold_[i] + 1 : 0;
+  if (hold_[i] >= config_.success_hold_steps) r.truncate = true;
+  if (config_.max_contact_force > 0 && ContactForce(view) > config_.max_contact_force)
+    r.terminate = true;
+  return r;
+}
+
+void ObjectSkill::SaveTaskState(int, std::vector<double>*) const {}
+size_t ObjectSkill::LoadTaskState(int, const double*, size_t) { return 0; }
+
+std::vector<double> ObjectSkill::SaveSkillState(int env_id) const {
+  std::vector<double> s = {static_cast<double>(object_[env_id]), static_cast<double>(hold_[env_id]),
+                           error_[env_id]};
+  SaveTaskState(env_id, &s);
+  return s;
+}
+
+void ObjectSkill::LoadSkillState(int env_id, const double* d, size_t size) {
+  if (size < 3)
+    ThrowInputError(name() + " skill state", "size", "at least 3 values", std::to_string(size));
+  const int k = static_cast<int>(d[0]);
+  if (k < 0 || k >= static_cast<int>(objects_.size()))
+    ThrowInputError(name() + " skill state", "object", "an object of this scene",
+                    std::to_string(k));
+  object_[env_id] = k;
+  hold_[env_id] = static_cast<int>(d[1]);
+  error_[env_id] = d[2];
+  const size_t used = LoadTaskState(env_id, d + 3, size - 3);
+  if (used != size - 3)
+    ThrowInputError(name() + " skill state", "size", "a snapshot of this skill",
+                    std::to_string(size) + " values");
+}
+
+}  // namespace sims::task

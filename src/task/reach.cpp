@@ -1,0 +1,137 @@
+#include "sims/task/reach.h"
+
+#include <cmath>
+
+#include "sims/core/error.h"
+#include "sims/sim/features.h"
+
+namespace sims::task {
+
+namespace {
+// Targets lie within this depth of the object's front face (m).
+constexpr double kFrontDepth = 0.12;
+// A reach clip fits a target when their heights differ by less than this (m).
+constexpr double kClipTargetTolerance = 0.15;
+}  // namespace
+
+std::vector<std::string> ReachCategories() {
+  return {"table", "desk", "cabinet", "shelf", "wardrobe"};
+}
+
+ReachSkill::ReachSkill(const SkillConfig& config, const SkillContext& context)
+    : ObjectSkill(config, context) {
+  reference_clips_.clear();
+  if (context.motions) reference_clips_ = context.motions->Find("reach");
+  target_.assign(context.num_envs, Eigen::Vector3d::Zero());
+  hand_.assign(context.num_envs, sim::kCjRightHand);
+  CollectObjects("object with front surfaces between 0.25 and 1.95 m");
+  for (const auto& g : objects_) candidates_.push_back(FrontPoints(g));
+}
+
+ReachSkill::Bands ReachSkill::FrontPoints(const ObjectGeometry& g) const {
+  Bands bands;
+  const scene::Object& o = context_.scene->objects[g.object];
+  const Eigen::Isometry3d X_OW = g.X_WO.inverse();
+  for (const auto& part : o.parts) {
+    for (const auto& p : part.points) {
+      const Eigen::Vector3d l = X_OW * p;
+      if (l.x() < g.local.max.x() - kFrontDepth) continue;
+      for (int b = 0; b < 3; ++b)
+        if (p.z() >= kReachBandEdges[b] && p.z() < kReachBandEdges[b + 1]) bands[b].push_back(p);
+    }
+  }
+  return bands;
+}
+
+bool ReachSkill::Accepts(const ObjectGeometry& g) const {
+  const Bands b = FrontPoints(g);
+  return !b[0].empty() || !b[1].empty() || !b[2].empty();
+}
+
+void ReachSkill::SetTarget(int i, int hand_joint, const Eigen::Vector3d& target) {
+  SIMS_CHECK(hand_joint == sim::kCjLeftHand || hand_joint == sim::kCjRightHand);
+  hand_[i] = hand_joint;
+  target_[i] = target;
+  hold_[i] = 0;
+  ClearGoals(i);
+  SetGoal(i, hand_joint, target);
+}
+
+void ReachSkill::SampleTask(int i, Rng& rng) {
+  const Bands& bands = candidates_[object_[i]];
+  std::vector<int> usable;
+  for (int b = 0; b < 3; ++b)
+    if (!bands[b].empty()) usable.push_back(b);
+  const int b = usable[rng.UniformInt(static_cast<int64_t>(usable.size()))];
+  const auto& pts = bands[b];
+  const int hand = rng.Bernoulli(0.5) ? sim::kCjLeftHand : sim::kCjRightHand;
+  SetTarget(i, hand, pts[rng.UniformInt(static_cast<int64_t>(pts.size()))]);
+}
+
+bool ReachSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
+  const auto* lib = context_.motions.get();
+  const bool left = hand_[i] == sim::kCjLeftHand;
+  std::vector<int> fitting;
+  for (int c : reference_clips_) {
+    const auto& prm = lib->clip(c).meta().params;
+    if (!prm.count("target_x") || !prm.count("target_y") || !prm.count("target_z")) continue;
+    if ((prm.at("target_y") > 0) != left) continue;
+    if (std::abs(prm.at("target_z") - target_[i].z()) > kClipTargetTolerance) continue;
+    fitting.push_back(c);
+  }
+  if (fitting.empty()) return false;
+  const int clip = fitting[rng.UniformInt(static_cast<int64_t>(fitting.size()))];
+  const auto& prm = lib->clip(clip).meta().params;
+  // The clip's character faces +x with its target ahead; in the world it faces the object's
+  // front (object −x) with the clip target on the chosen point.
+  const ObjectGeometry& g = geometry(i);
+  const ClipPlacement placement =
+      ClipPlacement::Align(target_[i].head<2>(), g.yaw + M_PI,
+                           Eigen::Vector2d(prm.at("target_x"), prm.at("target_y")), 0.0);
+  if (!FreeFloor(placement.offset, 0.2)) return false;
+  const double t = lib->SampleTime(clip, rng, config_.reference_init_max_fraction);
+  PlaceReference(i, clip, t, placement, init);
+  return true;
+}
+
+void ReachSkill::OnReset(const sim::EnvView& view, Rng&) {
+  const int i = view.env_id;
+  error_[i] = (target_[i] - sim::ContactJointPosition(*view.bodies, hand_[i])).norm();
+}
+
+sim::TaskStepResult ReachSkill::Step(const sim::EnvView& view) {
+  const int i = view.env_id;
+  const double d2 = (target_[i] - sim::ContactJointPosition(*view.bodies, hand_[i])).squaredNorm();
+  error_[i] = std::sqrt(d2);
+  const double r = ContactReward(target_[i].head<2>(), view.pose->root_pos.head<2>(),
+                                 view.pose->root_lin_vel.head<2>(), FacingOf(*view.pose),
+                                 config_.target_speed, d2);
+  return Finish(view, r, error_[i] < config_.contact_success_threshold);
+}
+
+void ReachSkill::SaveTaskState(int i, std::vector<double>* out) const {
+  out->insert(out->end(),
+              {static_cast<double>(hand_[i]), target_[i].x(), target_[i].y(), target_[i].z()});
+}
+
+size_t ReachSkill::LoadTaskState(int i, const double* d, size_t size) {
+  if (size < 4) return 0;
+  hand_[i] = static_cast<int>(d[0]);
+  target_[i] = Eigen::Vector3d(d[1], d[2], d[3]);
+  return 4;
+}
+
+SkillInfo ReachSkillInfo() {
+  SkillInfo info;
+  info.name = "reach";
+  info.description = "touch a point on a table, desk, cabinet, shelf or wardrobe with one hand";
+  info.build_scene = [](const SkillConfig& c, Rng& rng) {
+    return BuildTrainingGround(c, rng, ReachCategories());
+  };
+  info.create = [](const SkillConfig& c, const SkillContext& ctx) -> std::shared_ptr<Skill> {
+    return std::make_shared<ReachSkill>(c, ctx);
+  };
+  return info;
+}
+
+}  // namespace sims::task

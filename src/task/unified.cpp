@@ -1,0 +1,325 @@
+#include "sims/task/unified.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sims/core/error.h"
+#include "sims/scene/contact_targets.h"
+#include "sims/sim/features.h"
+
+namespace sims::task {
+
+namespace {
+
+ContactPairSpec PartPair(int joint, ContactType type, int object, int part,
+                         const Eigen::Vector3d& dir = Eigen::Vector3d::Zero()) {
+  ContactPairSpec p;
+  p.joint = joint;
+  p.type = type;
+  p.object = object;
+  p.part = part;
+  p.direction = dir;
+  return p;
+}
+
+ContactPairSpec JointPairSpec(int joint, int other) {
+  ContactPairSpec p;
+  p.joint = joint;
+  p.type = ContactType::kContact;
+  p.target_joint = other;
+  return p;
+}
+
+Eigen::Vector3d StandAt(const ObjectGeometry& g, int k) {
+  if (g.stand_points.empty()) {
+    const Eigen::Vector3d p =
+        g.ToWorld(Eigen::Vector3d(g.local.max.x() + 0.45, g.local.center().y(), 0));
+    return {p.x(), p.y(), sim::kDefaultRootHeight};
+  }
+  const Eigen::Vector3d& p = g.stand_points[k % g.stand_points.size()];
+  return {p.x(), p.y(), sim::kDefaultRootHeight};
+}
+
+}  // namespace
+
+std::vector<std::string> UnifiedCategories() {
+  return {"chair", "armchair", "sofa", "stool", "bed", "table", "shelf"};
+}
+
+UnifiedSkill::UnifiedSkill(const SkillConfig& config, const SkillContext& context)
+    : ObjectSkill(config, context) {
+  const int n = context.num_envs;
+  steps_.assign(n, {});
+  step_.assign(n, 0);
+  still_.assign(n, 0);
+  completed_.assign(n, 0);
+  CollectObjects("object");
+}
+
+int UnifiedSkill::obs_dim() const { return Skill::obs_dim() + kContactPairObsDim; }
+
+std::vector<sim::ObsSegment> UnifiedSkill::obs_segments() const {
+  auto segs = Skill::obs_segments();
+  sim::ObsSegment s;
+  s.name = "contact_pairs";
+  s.kind = sim::ObsSegment::Kind::kVector;
+  s.offset = Skill::obs_dim();
+  s.size = kContactPairObsDim;
+  segs.push_back(s);
+  return segs;
+}
+
+void UnifiedSkill::Observe(const sim::EnvView& view, float* out) const {
+  Skill::Observe(view, out);
+  float* o = out + Skill::obs_dim();
+  std::fill(o, o + kContactPairObsDim, 0.0f);
+  const int i = view.env_id;
+  if (steps_[i].empty()) return;
+  const Eigen::Quaterniond h_inv = sim::HeadingInverse(view.bodies->rot[sim::kPelvis]);
+  for (const auto& p : steps_[i][step_[i]].pairs) {
+    if (p.type == ContactType::kNone) continue;
+    o[p.joint] = p.type == ContactType::kContact ? 1.0f : -1.0f;
+    const Eigen::Vector3d d = h_inv * p.direction;
+    for (int k = 0; k < 3; ++k)
+      o[sim::kNumContactJoints + 3 * p.joint + k] = static_cast<float>(d[k]);
+  }
+}
+
+std::vector<ContactStep> UnifiedSkill::Templates(int k) const {
+  const ObjectGeometry& g = objects_[k];
+  const scene::Object& o = context_.scene->objects[g.object];
+  const Eigen::Vector3d up(0, 0, 1);
+  const Eigen::Vector3d front = g.X_WO.linear() * Eigen::Vector3d::UnitX();
+  const ContactType C = ContactType::kContact, N = ContactType::kNotContact;
+  std::vector<ContactStep> t;
+  auto add = [&](const std::string& label, std::vector<ContactPairSpec> pairs) {
+    ContactStep s;
+    s.pairs = std::move(pairs);
+    s.object = g.object;
+    s.stand_point = StandAt(g, 0);
+    s.label = label;
+    t.push_back(std::move(s));
+  };
+  using namespace sim;
+  if (g.seat >= 0) {
+    const ContactPairSpec sit = PartPair(kCjPelvis, C, g.object, g.seat, up);
+    add("sit", {sit});
+    if (g.back >= 0) {
+      add("sit, lean back", {sit, PartPair(kCjTorso, C, g.object, g.back, front)});
+      add("sit upright", {sit, PartPair(kCjTorso, N, g.object, g.back)});
+    }
+    if (g.left_arm >= 0 && g.right_arm >= 0)
+      add("sit, hands on the arm rests", {sit, PartPair(kCjLeftHand, C, g.object, g.left_arm, up),
+                                          PartPair(kCjRightHand, C, g.object, g.right_arm, up)});
+    add("sit, hands on the knees",
+        {sit, JointPairSpec(kCjLeftHand, kCjLeftKnee), JointPairSpec(kCjRightHand, kCjRightKnee)});
+  }
+  if (g.mattress >= 0) {
+    const ContactPairSpec on_bed = PartPair(kCjPelvis, C, g.object, g.mattress, up);
+    add("sit on the bed", {on_bed});
+    if (!g.pillows.empty())
+      add("lie on the bed", {on_bed, PartPair(kCjHead, C, g.object, g.pillows[0], up)});
+  }
+  for (size_t p = 0; p < o.parts.size(); ++p) {
+    const std::string& n = o.parts[p].name;
+    if (n != "top" && n != "board" && n != "door") continue;
+    const double top = o.parts[p].mesh.Bounds().max.z();
+    if (top < 0.3 || top > 2.0) continue;
+    add("touch the " + n + " with the left hand",
+        {PartPair(kCjLeftHand, C, g.object, static_cast<int>(p))});
+    add("touch the " + n + " with the right hand",
+        {PartPair(kCjRightHand, C, g.object, static_cast<int>(p))});
+  }
+  return t;
+}
+
+std::vector<ContactStep> UnifiedSkill::RandomChain(int k, Rng& rng) const {
+  const ObjectGeometry& g = objects_[k];
+  const std::vector<ContactStep> templates = Templates(k);
+  std::vector<ContactStep> chain;
+  if (templates.empty() || rng.Bernoulli(0.5)) {
+    ContactStep walk;
+    walk.object = g.object;
+    const int n = std::max<int>(1, static_cast<int>(g.stand_points.size()));
+    walk.stand_point = StandAt(g, static_cast<int>(rng.UniformInt(n)));
+    walk.label = "walk";
+    chain.push_back(walk);
+  }
+  if (templates.empty()) return chain;
+  const int n = static_cast<int>(templates.size());
+  const int first = static_cast<int>(rng.UniformInt(n));
+  chain.push_back(templates[first]);
+  if (n > 1 && rng.Bernoulli(0.5)) {
+    const int second = (first + 1 + static_cast<int>(rng.UniformInt(n - 1))) % n;
+    chain.push_back(templates[second]);
+  }
+  return chain;
+}
+
+void UnifiedSkill::SetPlan(const std::vector<ContactStep>& steps) {
+  for (const auto& s : steps)
+    SIMS_CHECK(s.object >= 0 && s.object < static_cast<int>(context_.scene->objects.size()));
+  plan_ = steps;
+}
+
+void UnifiedSkill::SampleTask(int i, Rng& rng) {
+  step_[i] = still_[i] = completed_[i] = 0;
+  if (plan_.empty()) {
+    steps_[i] = RandomChain(object_[i], rng);
+    return;
+  }
+  steps_[i] = plan_;
+  for (int k = 0; k < static_cast<int>(objects_.size()); ++k)
+    if (objects_[k].object == plan_.front().object) object_[i] = k;
+}
+
+std::array<JointPair, sim::kNumContactJoints> UnifiedSkill::Pairs(const ContactStep& step,
+                                                                  const sim::BodyStates& b) const {
+  std::array<JointPair, sim::kNumContactJoints> pairs;
+  for (const auto& p : step.pairs) {
+    if (p.type == ContactType::kNone) continue;
+    JointPair& jp = pairs[p.joint];
+    jp.type = p.type;
+    jp.joint = sim::ContactJointPosition(b, p.joint);
+    jp.target =
+        p.target_joint >= 0
+            ? sim::ContactJointPosition(b, p.target_joint)
+            : scene::NearestSamplePoint(context_.scene->objects[p.object].parts[p.part], jp.joint);
+    jp.direction = p.direction;
+  }
+  return pairs;
+}
+
+void UnifiedSkill::UpdateGoals(int i, const std::array<JointPair, sim::kNumContactJoints>& pairs) {
+  ClearGoals(i);
+  const ContactStep& st = steps_[i][step_[i]];
+  if (st.walking()) {
+    SetGoal(i, sim::kCjPelvis, st.stand_point);
+    return;
+  }
+  for (int j = 0; j < sim::kNumContactJoints; ++j)
+    if (pairs[j].type != ContactType::kNone) SetGoal(i, j, pairs[j].target);
+}
+
+namespace {
+double StepContactError(const ContactStep& st,
+                        const std::array<JointPair, sim::kNumContactJoints>& pairs,
+                        const sim::BodyStates& b) {
+  if (st.walking()) return (st.stand_point - sim::ContactJointPosition(b, sim::kCjPelvis)).norm();
+  double sum = 0;
+  int n = 0;
+  for (const auto& p : pairs) {
+    if (p.type == ContactType::kNone) continue;
+    sum += PairContactError(p.type, (p.target - p.joint).norm());
+    ++n;
+  }
+  return n ? sum / n : 0.0;
+}
+}  // namespace
+
+void UnifiedSkill::OnReset(const sim::EnvView& view, Rng&) {
+  const int i = view.env_id;
+  const auto pairs = Pairs(steps_[i][step_[i]], *view.bodies);
+  UpdateGoals(i, pairs);
+  error_[i] = StepContactError(steps_[i][step_[i]], pairs, *view.bodies);
+}
+
+sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
+  const int i = view.env_id;
+  const sim::BodyStates& b = *view.bodies;
+  const ContactStep& st = steps_[i][step_[i]];
+  auto pairs = Pairs(st, b);
+  const StepReward sr =
+      UniHsiStepReward(pairs, view.pose->root_pos, view.pose->root_lin_vel, FacingOf(*view.pose),
+                       st.stand_point, config_.target_speed);
+  double max_l1 = 0;
+  for (const auto& v : b.lin_vel) max_l1 = std::max(max_l1, v.cwiseAbs().sum());
+  still_[i] = max_l1 < kStillVelocityL1 ? still_[i] + 1 : 0;
+  const bool big_force =
+      config_.max_contact_force > 0 && ContactForce(view) > config_.max_contact_force;
+  const StepCheck check = CheckUniHsiStep(st.types(), sr, big_force, still_[i]);
+  error_[i] = StepContactError(st, pairs, b);
+
+  sim::TaskStepResult r;
+  r.reward = static_cast<float>(sr.reward);
+  if (big_force) {
+    r.terminate = true;
+  } else if (check.advance) {
+    r.success = true;
+    ++completed_[i];
+    if (step_[i] + 1 < static_cast<int>(steps_[i].size())) {
+      ++step_[i];
+      still_[i] = 0;
+      pairs = Pairs(steps_[i][step_[i]], b);
+    } else {
+      r.truncate = true;
+    }
+  } else if (check.triggered) {
+    r.truncate = true;  // done without passing: UniHSI restarts the chain
+  }
+  UpdateGoals(i, pairs);
+  return r;
+}
+
+void UnifiedSkill::SaveTaskState(int i, std::vector<double>* out) const {
+  out->push_back(static_cast<double>(step_[i]));
+  out->push_back(static_cast<double>(still_[i]));
+  out->push_back(static_cast<double>(completed_[i]));
+  out->push_back(static_cast<double>(steps_[i].size()));
+  for (const auto& s : steps_[i]) {
+    out->insert(out->end(), {static_cast<double>(s.object), s.stand_point.x(), s.stand_point.y(),
+                             s.stand_point.z(), static_cast<double>(s.pairs.size())});
+    for (const auto& p : s.pairs)
+      out->insert(
+          out->end(),
+          {static_cast<double>(p.joint), static_cast<double>(static_cast<int>(p.type)),
+           static_cast<double>(p.object), static_cast<double>(p.part),
+           static_cast<double>(p.target_joint), p.direction.x(), p.direction.y(), p.direction.z()});
+  }
+}
+
+size_t UnifiedSkill::LoadTaskState(int i, const double* d, size_t size) {
+  size_t k = 0;
+  auto next = [&]() {
+    if (k >= size)
+      ThrowInputError("unified skill state", "steps", "a snapshot of this skill", "too short");
+    return d[k++];
+  };
+  step_[i] = static_cast<int>(next());
+  still_[i] = static_cast<int>(next());
+  completed_[i] = static_cast<int>(next());
+  const int n = static_cast<int>(next());
+  steps_[i].assign(n, {});
+  for (auto& s : steps_[i]) {
+    s.object = static_cast<int>(next());
+    s.stand_point.x() = next();
+    s.stand_point.y() = next();
+    s.stand_point.z() = next();
+    s.pairs.resize(static_cast<size_t>(next()));
+    for (auto& p : s.pairs) {
+      p.joint = static_cast<int>(next());
+      p.type = static_cast<ContactType>(static_cast<int>(next()));
+      p.object = static_cast<int>(next());
+      p.part = static_cast<int>(next());
+      p.target_joint = static_cast<int>(next());
+      for (int c = 0; c < 3; ++c) p.direction[c] = next();
+    }
+    s.label = s.walking() ? "walk" : "contact";
+  }
+  return k;
+}
+
+SkillInfo UnifiedSkillInfo() {
+  SkillInfo info;
+  info.name = "unified";
+  info.description = "one policy for chains of contacts (UniHSI): sit, lean, lie, touch, walk";
+  info.build_scene = [](const SkillConfig& c, Rng& rng) {
+    return BuildTrainingGround(c, rng, UnifiedCategories());
+  };
+  info.create = [](const SkillConfig& c, const SkillContext& ctx) -> std::shared_ptr<Skill> {
+    return std::make_shared<UnifiedSkill>(c, ctx);
+  };
+  return info;
+}
+
+}  // namespace sims::task
