@@ -294,7 +294,11 @@ std::string TemplateNarrative(const LongScript& script,
       if (used != requested) {
         phrase += " (a " + used + " serves as the " + requested + ")";
       } else if (NormalizeSpaces(phrase).find(NormalizeSpaces(requested)) == std::string::npos) {
-        phrase += " at the " + requested;
+        const char* prep = k.skill == Skill::kSit || k.skill == Skill::kLie ? " on the "
+                           : k.skill == Skill::kWalk                        ? " towards the "
+                           : k.skill == Skill::kGetUp                       ? " from the "
+                                                                            : " at the ";
+        phrase += prep + requested;
       }
     }
     if (groups.empty() || groups.back().emotion != k.emotion) groups.push_back({k.emotion, {}});
