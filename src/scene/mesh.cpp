@@ -194,9 +194,13 @@ Eigen::Vector3d TriangleMesh::TriangleNormal(int t) const {
   return len > 1e-300 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
 
-TriangleMesh TriangleMesh::Welded(double tolerance) const {
+namespace {
+
+// Maps every vertex to a representative within `tolerance` (spatial hash over quantised
+// cells; neighbouring cells are searched so points straddling a border still merge).
+std::vector<int> WeldRemap(const std::vector<Eigen::Vector3d>& vertices, double tolerance,
+                           std::vector<Eigen::Vector3d>* welded) {
   SIMS_CHECK(tolerance > 0);
-  TriangleMesh out;
   std::unordered_map<CellKey, std::vector<int>, CellKeyHash> grid;
   std::vector<int> remap(vertices.size());
   const double inv = 1.0 / tolerance;
@@ -212,19 +216,54 @@ TriangleMesh TriangleMesh::Welded(double tolerance) const {
           auto it = grid.find({key.x + dx, key.y + dy, key.z + dz});
           if (it == grid.end()) continue;
           for (int j : it->second) {
-            if ((out.vertices[j] - v).squaredNorm() <= tolerance * tolerance) {
+            if (((*welded)[j] - v).squaredNorm() <= tolerance * tolerance) {
               found = j;
               break;
             }
           }
         }
     if (found < 0) {
-      found = static_cast<int>(out.vertices.size());
-      out.vertices.push_back(v);
+      found = static_cast<int>(welded->size());
+      welded->push_back(v);
       grid[key].push_back(found);
     }
     remap[i] = found;
   }
+  return remap;
+}
+
+uint64_t EdgeKey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
+}
+
+// Unions triangles across edges used by exactly two triangles (manifold edges).
+void UnionManifoldEdges(const std::vector<Eigen::Vector3i>& triangles, const std::vector<int>& map,
+                        const std::vector<uint8_t>& skip, std::vector<int>* parent) {
+  std::vector<std::pair<uint64_t, int>> edges;
+  edges.reserve(triangles.size() * 3);
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
+    if (skip[t]) continue;
+    for (int e = 0; e < 3; ++e)
+      edges.emplace_back(EdgeKey(map[triangles[t][e]], map[triangles[t][(e + 1) % 3]]), t);
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    if (j - i == 2) {
+      const int a = FindRoot(*parent, edges[i].second), b = FindRoot(*parent, edges[i + 1].second);
+      if (a != b) (*parent)[std::max(a, b)] = std::min(a, b);
+    }
+    i = j;
+  }
+}
+
+}  // namespace
+
+TriangleMesh TriangleMesh::Welded(double tolerance) const {
+  TriangleMesh out;
+  const std::vector<int> remap = WeldRemap(vertices, tolerance, &out.vertices);
   out.triangles.reserve(triangles.size());
   for (const auto& t : triangles) {
     const Eigen::Vector3i r(remap[t[0]], remap[t[1]], remap[t[2]]);
@@ -234,34 +273,29 @@ TriangleMesh TriangleMesh::Welded(double tolerance) const {
   return out;
 }
 
-namespace {
-uint64_t EdgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
-}
-}  // namespace
-
 std::vector<TriangleMesh> TriangleMesh::EdgeConnectedComponents(double tolerance) const {
-  const TriangleMesh w = Welded(tolerance);
-  const int nt = static_cast<int>(w.triangles.size());
+  std::vector<Eigen::Vector3d> welded;
+  const std::vector<int> remap = WeldRemap(vertices, tolerance, &welded);
+  const int nt = static_cast<int>(triangles.size());
+  std::vector<uint8_t> degenerate(nt, 0);
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::Vector3i r(remap[triangles[t][0]], remap[triangles[t][1]], remap[triangles[t][2]]);
+    degenerate[t] = r[0] == r[1] || r[1] == r[2] || r[0] == r[2];
+  }
   std::vector<int> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
-  std::unordered_map<uint64_t, int> first_triangle;
-  first_triangle.reserve(nt * 3);
-  for (int t = 0; t < nt; ++t) {
-    for (int e = 0; e < 3; ++e) {
-      const uint64_t key = EdgeKey(w.triangles[t][e], w.triangles[t][(e + 1) % 3]);
-      auto [it, inserted] = first_triangle.emplace(key, t);
-      if (!inserted) {
-        const int a = FindRoot(parent, t), b = FindRoot(parent, it->second);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-      }
-    }
-  }
+  // Connectivity through the mesh's own indices (keeps a primitive together) and through
+  // welded positions (joins faces exporters wrote with duplicated vertices); in both only
+  // manifold edges connect, so solids that merely touch along an edge or a face stay apart.
+  std::vector<int> identity(vertices.size());
+  std::iota(identity.begin(), identity.end(), 0);
+  UnionManifoldEdges(triangles, identity, degenerate, &parent);
+  UnionManifoldEdges(triangles, remap, degenerate, &parent);
   std::unordered_map<int, int> component_of_root;
   std::vector<TriangleMesh> out;
   std::vector<std::unordered_map<int, int>> vertex_maps;
   for (int t = 0; t < nt; ++t) {
+    if (degenerate[t]) continue;
     const int root = FindRoot(parent, t);
     auto [it, inserted] = component_of_root.emplace(root, static_cast<int>(out.size()));
     if (inserted) {
@@ -272,9 +306,9 @@ std::vector<TriangleMesh> TriangleMesh::EdgeConnectedComponents(double tolerance
     auto& vmap = vertex_maps[it->second];
     Eigen::Vector3i tri;
     for (int k = 0; k < 3; ++k) {
-      const int v = w.triangles[t][k];
+      const int v = remap[triangles[t][k]];
       auto [vit, vinserted] = vmap.emplace(v, static_cast<int>(m.vertices.size()));
-      if (vinserted) m.vertices.push_back(w.vertices[v]);
+      if (vinserted) m.vertices.push_back(welded[v]);
       tri[k] = vit->second;
     }
     m.triangles.push_back(tri);

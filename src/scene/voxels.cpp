@@ -173,6 +173,78 @@ std::vector<Aabb> MergeVoxelsToBoxes(const VoxelGrid& grid) {
   return boxes;
 }
 
+namespace {
+
+// Clips a convex polygon to the half-space sign * (p[axis] - value) <= 0.
+void ClipPolygon(std::vector<Vector3d>* poly, int axis, double value, double sign) {
+  std::vector<Vector3d> out;
+  const std::size_t n = poly->size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vector3d& a = (*poly)[i];
+    const Vector3d& b = (*poly)[(i + 1) % n];
+    const double da = sign * (a[axis] - value), db = sign * (b[axis] - value);
+    if (da <= 0) out.push_back(a);
+    if ((da < 0 && db > 0) || (da > 0 && db < 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  poly->swap(out);
+}
+
+}  // namespace
+
+std::vector<Aabb> TightenBoxesToSurface(const std::vector<Aabb>& boxes, const VoxelGrid& grid,
+                                        const TriangleMesh& mesh) {
+  std::vector<Aabb> out = boxes;
+  const double r = grid.resolution;
+  for (Aabb& box : out) {
+    Eigen::Vector3i lo, hi;  // cell index range [lo, hi)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = static_cast<int>(std::lround((box.min[k] - grid.origin[k]) / r));
+      hi[k] = static_cast<int>(std::lround((box.max[k] - grid.origin[k]) / r));
+    }
+    // Which faces have only empty cells beyond them.
+    bool exterior[3][2];
+    for (int axis = 0; axis < 3; ++axis) {
+      const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+      for (int side = 0; side < 2; ++side) {
+        const int layer = side == 0 ? lo[axis] - 1 : hi[axis];
+        bool empty = true;
+        for (int u = lo[a1]; u < hi[a1] && empty; ++u)
+          for (int v = lo[a2]; v < hi[a2] && empty; ++v) {
+            Eigen::Vector3i c;
+            c[axis] = layer;
+            c[a1] = u;
+            c[a2] = v;
+            if (grid.At(c.x(), c.y(), c.z())) empty = false;
+          }
+        exterior[axis][side] = empty;
+      }
+    }
+    // Bounds of the surface inside the box.
+    Aabb surface;
+    for (const auto& t : mesh.triangles) {
+      const Vector3d& a = mesh.vertices[t[0]];
+      const Vector3d& b = mesh.vertices[t[1]];
+      const Vector3d& c = mesh.vertices[t[2]];
+      if ((a.cwiseMax(b).cwiseMax(c).array() < box.min.array()).any() ||
+          (a.cwiseMin(b).cwiseMin(c).array() > box.max.array()).any())
+        continue;
+      std::vector<Vector3d> poly = {a, b, c};
+      for (int axis = 0; axis < 3 && !poly.empty(); ++axis) {
+        ClipPolygon(&poly, axis, box.max[axis], 1.0);
+        if (!poly.empty()) ClipPolygon(&poly, axis, box.min[axis], -1.0);
+      }
+      for (const auto& p : poly) surface.Extend(p);
+    }
+    if (surface.empty()) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      // Keep at least a sliver so a box never degenerates.
+      if (exterior[axis][0]) box.min[axis] = std::min(surface.min[axis], box.max[axis] - 1e-3);
+      if (exterior[axis][1]) box.max[axis] = std::max(surface.max[axis], box.min[axis] + 1e-3);
+    }
+  }
+  return out;
+}
+
 bool InsideByWindingNumber(const TriangleMesh& mesh, const Eigen::Vector3d& p) {
   double total = 0;
   for (const auto& t : mesh.triangles)

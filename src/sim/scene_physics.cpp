@@ -110,8 +110,9 @@ std::vector<StaticGeom> VoxelBoxes(const TriangleMesh& m, const ScenePhysicsOpti
   double res = o.voxel_size;
   for (int attempt = 0; attempt < 8; ++attempt, res *= 1.5) {
     const scene::VoxelGrid grid = scene::VoxelizeSolid(m, res);
-    const std::vector<scene::Aabb> boxes = scene::MergeVoxelsToBoxes(grid);
+    std::vector<scene::Aabb> boxes = scene::MergeVoxelsToBoxes(grid);
     if (static_cast<int>(boxes.size()) > o.max_boxes_per_piece && attempt < 7) continue;
+    boxes = scene::TightenBoxesToSurface(boxes, grid, m);
     std::vector<StaticGeom> out;
     for (const auto& b : boxes) {
       StaticGeom g;
@@ -130,6 +131,8 @@ std::vector<StaticGeom> VoxelBoxes(const TriangleMesh& m, const ScenePhysicsOpti
 void ScenePhysicsOptions::Validate() const {
   Require(voxel_size > 0.002 && voxel_size < 1, "voxel_size", "a cell size in (0.002, 1) m");
   Require(convexity_tolerance >= 0, "convexity_tolerance", "a non-negative distance");
+  Require(convexity_relative >= 0 && convexity_relative < 0.5, "convexity_relative",
+          "a fraction in [0, 0.5)");
   Require(min_thickness > 0, "min_thickness", "a positive thickness");
   Require(min_piece_size >= 0, "min_piece_size", "a non-negative size");
   Require(max_boxes_per_piece >= 1, "max_boxes_per_piece", "at least 1");
@@ -163,7 +166,10 @@ std::vector<StaticGeom> CompileMeshGeometry(const TriangleMesh& mesh,
     std::vector<StaticGeom> geoms;
     const double work =
         static_cast<double>(piece.triangles.size()) * static_cast<double>(piece.vertices.size());
-    if (work <= kMaxConvexityWork && IsConvexPiece(piece, options.convexity_tolerance)) {
+    const double diagonal = piece.Bounds().size().norm();
+    const double tolerance =
+        std::max(options.convexity_tolerance, options.convexity_relative * diagonal);
+    if (work <= kMaxConvexityWork && IsConvexPiece(piece, tolerance)) {
       StaticGeom g;
       if (!AsBox(piece, 1e-6 + 1e-4 * piece.Bounds().size().norm(), &g))
         g = AsConvexMesh(piece, options.min_thickness);

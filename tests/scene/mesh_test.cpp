@@ -69,6 +69,19 @@ TEST(MeshTest, ComponentsSplitTouchingPrimitivesButNotSharedEdges) {
   TriangleMesh m = TriangleMesh::Box({0, 0, 0.4}, {0.5, 0.5, 0.45});
   m.Append(TriangleMesh::Box({0, 0, 0}, {0.05, 0.05, 0.4}));
   EXPECT_EQ(m.EdgeConnectedComponents().size(), 2u);
+  // Two walls meeting at a corner share a vertical edge but are separate solids; so are two
+  // cushions sharing a face.
+  TriangleMesh corner = TriangleMesh::Box({0, 0, 0}, {5, 0.1, 2.5});
+  corner.Append(TriangleMesh::Box({0, 0, 0}, {0.1, 5, 2.5}));
+  EXPECT_EQ(corner.EdgeConnectedComponents().size(), 2u);
+  TriangleMesh cushions = TriangleMesh::Box({0, 0, 0}, {1, 1, 0.2});
+  cushions.Append(TriangleMesh::Box({0, 1, 0}, {1, 2, 0.2}));
+  EXPECT_EQ(cushions.EdgeConnectedComponents().size(), 2u);
+  TriangleMesh open_quad;
+  open_quad.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  open_quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_FALSE(open_quad.IsClosed());
+  EXPECT_EQ(open_quad.EdgeConnectedComponents().size(), 1u);
   // A box whose faces come with duplicated vertices (as exporters write them) is one piece.
   TriangleMesh split;
   const TriangleMesh box = TriangleMesh::Box({0, 0, 0}, {1, 1, 1});

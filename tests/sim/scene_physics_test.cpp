@@ -6,6 +6,8 @@
 
 #include "sims/core/error.h"
 #include "sims/scene/builtin.h"
+#include "sims/scene/loaders.h"
+#include "sims/scene/ray_caster.h"
 
 namespace sims::sim {
 namespace {
@@ -115,16 +117,33 @@ TEST(ScenePhysicsTest, HouseCompilesIntoAMujocoModel) {
   const scene::Scene house = scene::BuiltinHouse();
   const StaticGeometry geometry = CompileSceneGeometry(house);
   EXPECT_GT(geometry.geoms.size(), 100u);
+  // Built-in furniture and walls are made of boxes and cylinders: no voxel decomposition, and
+  // each wall box stays one box geom.
+  int wall_geoms = 0;
+  for (const auto& g : geometry.geoms) {
+    if (g.name.rfind("walls/", 0) == 0) {
+      ++wall_geoms;
+      EXPECT_EQ(g.type, StaticGeom::Type::kBox);
+    }
+  }
+  EXPECT_EQ(wall_geoms, static_cast<int>(house.walls.triangles.size() / 12));
   const MjModelPtr model = BuildModel(geometry);
   const MjModelPtr bare = BuildModel({});
   EXPECT_EQ(model->ngeom, static_cast<int>(geometry.geoms.size()) + bare->ngeom);
 }
 
-// Humanoid dropped in a sitting pose onto a chair seat, holding the pose with its PD servos.
-TEST(ScenePhysicsTest, SittingHumanoidRestsOnTheSeat) {
-  scene::Scene s;
-  s.AddObject(scene::MakeFurniture("chair", scene::DefaultFurnitureParams("chair")));
-  const double seat_top = s.objects[0].FindPart("seat surface")->mesh.Bounds().max.z();
+// Drops the humanoid in a sitting pose (hips -90°, knees +90°, forearms forward) with its
+// pelvis at (x, y), facing `yaw`, thighs 2 cm above `seat_top`; holds the pose with the PD
+// servos for 2 s and reports where the pelvis ended up.
+struct SitResult {
+  double pelvis_bottom = 0;
+  Vector3d root = Vector3d::Zero();
+  double root_speed = 0;
+  bool seat_contact = false;
+};
+
+SitResult DropSitting(const scene::Scene& s, double x, double y, double yaw, double seat_top,
+                      const std::string& seat_geom_fragment) {
   const StaticGeometry geometry = CompileSceneGeometry(s);
   const MjModelPtr model = BuildModel(geometry);
   MjDataPtr data = MakeData(model.get());
@@ -135,43 +154,91 @@ TEST(ScenePhysicsTest, SittingHumanoidRestsOnTheSeat) {
     EXPECT_GE(j, 0) << name;
     return m->jnt_qposadr[j];
   };
-  // Facing +x (the chair's front), pelvis over the back half of the seat, thighs (radius
-  // 0.055 m below the hip) 2 cm above the seat.
-  d->qpos[0] = -0.06;
-  d->qpos[1] = 0.0;
-  d->qpos[2] = seat_top + 0.055 + 0.02;
-  d->qpos[3] = 1.0;
+  d->qpos[0] = x;
+  d->qpos[1] = y;
+  d->qpos[2] = seat_top + 0.055 + 0.02;  // thigh capsules (radius 0.055) 2 cm above the seat
+  d->qpos[3] = std::cos(yaw / 2);
+  d->qpos[6] = std::sin(yaw / 2);
   for (const char* hip : {"right_hip_y", "left_hip_y"}) d->qpos[joint_qpos(hip)] = -M_PI / 2;
   for (const char* knee : {"right_knee", "left_knee"}) d->qpos[joint_qpos(knee)] = M_PI / 2;
   // Forearms forward (hands off the seat, as when resting them in front of the body).
   for (const char* elbow : {"right_elbow", "left_elbow"}) d->qpos[joint_qpos(elbow)] = -M_PI / 2;
   mj_forward(m, d);
-  ASSERT_EQ(m->nu, 28);
+  EXPECT_EQ(m->nu, 28);
   // Actuators follow the hinge order, so the PD targets are the hinge angles.
   for (int i = 0; i < m->nu; ++i) d->ctrl[i] = d->qpos[m->jnt_qposadr[m->actuator_trnid[2 * i]]];
   const int pelvis = mj_name2id(m, mjOBJ_GEOM, "pelvis");
-  ASSERT_GE(pelvis, 0);
+  EXPECT_GE(pelvis, 0);
   const int steps = static_cast<int>(2.0 / m->opt.timestep);
   for (int i = 0; i < steps; ++i) mj_step(m, d);
-  const double lowest = d->geom_xpos[3 * pelvis + 2] - m->geom_size[3 * pelvis];
-  EXPECT_NEAR(lowest, seat_top, 0.05) << "pelvis bottom " << lowest << ", seat top " << seat_top;
-  EXPECT_GT(lowest, seat_top - 0.02) << "pelvis sank into the seat";
-  // Still above the seat footprint and at rest.
-  EXPECT_LT(std::abs(d->qpos[0]), 0.23);
-  EXPECT_LT(std::abs(d->qpos[1]), 0.23);
-  double speed = 0;
-  for (int i = 0; i < 3; ++i) speed += d->qvel[i] * d->qvel[i];
-  EXPECT_LT(std::sqrt(speed), 0.05);
-  // Supported by the seat: some body geom touches a seat geom.
-  bool seat_contact = false;
+  SitResult r;
+  r.pelvis_bottom = d->geom_xpos[3 * pelvis + 2] - m->geom_size[3 * pelvis];
+  r.root = Vector3d(d->qpos[0], d->qpos[1], d->qpos[2]);
+  r.root_speed = Vector3d(d->qvel[0], d->qvel[1], d->qvel[2]).norm();
   for (int c = 0; c < d->ncon; ++c) {
     for (int k = 0; k < 2; ++k) {
       const char* name =
           mj_id2name(m, mjOBJ_GEOM, k == 0 ? d->contact[c].geom1 : d->contact[c].geom2);
-      if (name && std::string(name).find("seat surface") != std::string::npos) seat_contact = true;
+      if (name && std::string(name).find(seat_geom_fragment) != std::string::npos)
+        r.seat_contact = true;
     }
   }
-  EXPECT_TRUE(seat_contact);
+  return r;
+}
+
+TEST(ScenePhysicsTest, SittingHumanoidRestsOnTheSeat) {
+  scene::Scene s;
+  s.AddObject(scene::MakeFurniture("chair", scene::DefaultFurnitureParams("chair")));
+  const double seat_top = s.objects[0].FindPart("seat surface")->mesh.Bounds().max.z();
+  // Facing +x (the chair's front), pelvis over the back half of the seat.
+  const SitResult r = DropSitting(s, -0.06, 0.0, 0.0, seat_top, "seat surface");
+  EXPECT_NEAR(r.pelvis_bottom, seat_top, 0.05)
+      << "pelvis bottom " << r.pelvis_bottom << ", seat top " << seat_top;
+  EXPECT_GT(r.pelvis_bottom, seat_top - 0.02) << "pelvis sank into the seat";
+  // Still above the seat footprint, at rest and touching the seat.
+  EXPECT_LT(std::abs(r.root.x()), 0.23);
+  EXPECT_LT(std::abs(r.root.y()), 0.23);
+  EXPECT_LT(r.root_speed, 0.05);
+  EXPECT_TRUE(r.seat_contact);
+}
+
+// The same on a real, unsegmented MORSE chair (one connected non-convex mesh, voxel boxes):
+// the seat height and the back's side come from down-casts.
+TEST(ScenePhysicsTest, SittingOnAVoxelisedMorseChair) {
+  const scene::Scene apartment = scene::LoadMorseApartment();
+  const scene::Object* chair = apartment.FindObject("IKEA_chair_STEFAN");
+  ASSERT_NE(chair, nullptr);
+  scene::Scene s;
+  s.AddObject(*chair);
+  const scene::Aabb b = s.objects[0].Bounds();
+  const scene::RayCaster rc(s);
+  Eigen::Vector2d back = Eigen::Vector2d::Zero();
+  double seat_sum = 0;
+  int n_back = 0, n_seat = 0;
+  for (double y = b.min.y(); y <= b.max.y(); y += 0.02)
+    for (double x = b.min.x(); x <= b.max.x(); x += 0.02) {
+      const double h = rc.HeightAt(x, y);
+      if (h > 0.7) {
+        back += Eigen::Vector2d(x, y);
+        ++n_back;
+      } else if (h > 0.3) {
+        seat_sum += h;
+        ++n_seat;
+      }
+    }
+  ASSERT_GT(n_back, 0);
+  ASSERT_GT(n_seat, 0);
+  const double seat_top = seat_sum / n_seat;
+  const Eigen::Vector2d center(b.center().x(), b.center().y());
+  const Eigen::Vector2d front = (center - back / n_back).normalized();
+  const Eigen::Vector2d p = center + 0.05 * front;
+  const SitResult r =
+      DropSitting(s, p.x(), p.y(), std::atan2(front.y(), front.x()), seat_top, "IKEA_chair");
+  EXPECT_NEAR(r.pelvis_bottom, seat_top, 0.05)
+      << "pelvis bottom " << r.pelvis_bottom << ", seat top " << seat_top;
+  EXPECT_GT(r.pelvis_bottom, seat_top - 0.02);
+  EXPECT_LT((r.root.head<2>() - center).norm(), 0.25);
+  EXPECT_TRUE(r.seat_contact);
 }
 
 }  // namespace

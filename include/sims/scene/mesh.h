@@ -68,8 +68,9 @@ struct TriangleMesh {
   Eigen::Vector3d TriangleNormal(int t) const;
   /// Merges vertices closer than `tolerance` and drops degenerate triangles.
   TriangleMesh Welded(double tolerance = 1e-6) const;
-  /// Splits into pieces connected through shared edges (after welding with `tolerance`), so
-  /// primitives that merely touch at a corner or overlap stay separate.
+  /// Splits into pieces connected through shared manifold edges (after welding with
+  /// `tolerance`), so primitives that merely touch (at a corner, an edge or a face) or overlap
+  /// stay separate.
   std::vector<TriangleMesh> EdgeConnectedComponents(double tolerance = 1e-6) const;
   /// True when every edge is shared by exactly two triangles (after welding).
   bool IsClosed(double tolerance = 1e-6) const;

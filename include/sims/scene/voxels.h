@@ -52,6 +52,12 @@ VoxelGrid VoxelizeSolid(const TriangleMesh& mesh, double resolution);
 /// then z), returned in world coordinates.
 std::vector<Aabb> MergeVoxelsToBoxes(const VoxelGrid& grid);
 
+/// Shrinks the exterior faces of boxes from MergeVoxelsToBoxes(grid) to the mesh surface they
+/// contain, removing the up-to-one-cell inflation of the voxelisation (a voxelised seat keeps
+/// its true height). Faces next to other occupied cells stay put so the boxes remain a cover.
+std::vector<Aabb> TightenBoxesToSurface(const std::vector<Aabb>& boxes, const VoxelGrid& grid,
+                                        const TriangleMesh& mesh);
+
 /// Exact inside test by the generalised winding number (closed, outward-wound meshes; a
 /// union of closed shells counts as inside where any shell contains the point).
 bool InsideByWindingNumber(const TriangleMesh& mesh, const Eigen::Vector3d& p);

@@ -15,11 +15,12 @@ namespace sims::sim {
 
 /// How scene meshes become collision geometry.
 struct ScenePhysicsOptions {
-  double voxel_size = 0.025;          ///< Cell size of the non-convex decomposition (m).
-  double convexity_tolerance = 0.01;  ///< Vertices may stick out of a face plane this much (m).
+  double voxel_size = 0.03;           ///< Cell size of the non-convex decomposition (m).
+  double convexity_tolerance = 0.01;  ///< Vertices may stick out of a face plane this much (m)
+  double convexity_relative = 0.04;   ///< ... or this fraction of the piece's diagonal.
   double min_thickness = 0.02;        ///< Flat pieces are thickened to this (m).
   double min_piece_size = 0.01;       ///< Pieces with a smaller bounding-box diagonal are dropped.
-  int max_boxes_per_piece = 400;      ///< Coarser voxels when a piece needs more boxes.
+  int max_boxes_per_piece = 64;       ///< Coarser voxels when a piece needs more boxes.
   double friction = 1.0;              ///< Sliding friction of all scene geoms.
   bool include_walls = true;          ///< Compile scene.walls.
   std::vector<std::string> skip_categories;  ///< Object categories left out of physics.
@@ -29,6 +30,7 @@ struct ScenePhysicsOptions {
   void Serialize(A* a) {
     a->Visit(SIMS_NVP(voxel_size));
     a->Visit(SIMS_NVP(convexity_tolerance));
+    a->Visit(SIMS_NVP(convexity_relative));
     a->Visit(SIMS_NVP(min_thickness));
     a->Visit(SIMS_NVP(min_piece_size));
     a->Visit(SIMS_NVP(max_boxes_per_piece));
