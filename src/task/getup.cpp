@@ -57,13 +57,17 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context, b
   stand_.assign(n, Eigen::Vector2d::Zero());
   reference_clips_.clear();
   if (context.motions) reference_clips_ = context.motions->Find(sit_first ? "sit" : "getup");
-  if (!sit_first) fall_states_ = GenerateFallStates(kNumFallStates, 0xFA11u);
+  if (!sit_first) {
+    // The states depend only on the fixed seed: generate them once per process.
+    static const std::vector<sim::HumanoidPose> states =
+        GenerateFallStates(kNumFallStates, 0xFA11u);
+    fall_states_ = states;
+  }
   // The feet goal's height: foot origins of the standing default pose.
   sim::MjDataPtr scratch = sim::MakeData(context.humanoid->model());
   sim::BodyStates b;
   sim::ForwardKinematics(*context.humanoid, sim::HumanoidPose{}, scratch.get(), &b);
-  foot_height_ = 0.5 * (b.pos[sim::kLeftFoot].z() + b.pos[sim::kRightFoot].z()) -
-                 (sim::kDefaultRootHeight - b.pos[sim::kPelvis].z());
+  foot_height_ = 0.5 * (b.pos[sim::kLeftFoot].z() + b.pos[sim::kRightFoot].z());
   CollectObjects(sit_first ? "object with a 'seat surface' part"
                            : "seat or bed (a 'seat surface' or 'mattress' part)");
 }

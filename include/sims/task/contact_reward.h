@@ -12,6 +12,9 @@
 // combined with adaptive weights w_i = (1 − r_i)/(n − Σr + 1e-4); then over the 15 joints
 // (joints without a pair count 1), then with a hand-facing term. A step without contacts is a
 // walking step toward a stand point: exp(−0.5·|Δp|²), velocity and facing terms, adaptively.
+// Kept exactly as UniHSI has it, including its corner: when every term is exactly 1 all weights
+// are 0 and so is the sum (a pair needs its joint within millimetres of the target for this,
+// which body geometry prevents).
 #pragma once
 
 #include <array>

@@ -1,0 +1,93 @@
+#include "sims/task/lie.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "sims/motion/mirror.h"
+#include "sims/scene/contact_targets.h"
+#include "task/task_test_util.h"
+
+namespace sims::task {
+namespace {
+
+using testing::MakeSkillEnv;
+using testing::PoseAt;
+using testing::ViewOf;
+
+SkillConfig LieConfig() {
+  SkillConfig c;
+  c.skill = "lie";
+  c.num_objects = 2;
+  c.contact_success_threshold = 0.3;
+  c.motion.manifest = testing::SyntheticManifest({"lie"});
+  c.motion.skills = {"lie"};
+  return c;
+}
+
+TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
+  // The lying clips (and their mirrors: head toward the other end, approached from the other
+  // side) placed on each bed end with the pelvis on the mattress and the head on a pillow.
+  auto s = MakeSkillEnv(LieConfig(), 1);
+  auto* lie = dynamic_cast<LieSkill*>(s.setup.skill.get());
+  ASSERT_NE(lie, nullptr);
+  const auto& lib = *s.setup.context.motions;
+  const auto& scene = *s.setup.context.scene;
+  sim::MjDataPtr scratch = sim::MakeData(s.setup.context.humanoid->model());
+  int checked = 0;
+  for (const auto& g : lie->objects()) {
+    ASSERT_FALSE(g.pillows.empty());
+    for (int clip : lib.Find("lie")) {
+      for (bool mirror : {false, true}) {
+        const motion::MotionClip c = mirror ? motion::MirrorClip(lib.clip(clip)) : lib.clip(clip);
+        if (c.meta().style == "on side") continue;  // lies on its side, head lower
+        Eigen::Vector2d p_clip;
+        double yaw_clip = 0, dz = 0;
+        ASSERT_TRUE(ClipFurnitureFrame(c, g, 0.0, &p_clip, &yaw_clip, &dz));
+        const auto place =
+            ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
+        sim::BodyStates b;
+        sim::ForwardKinematics(*s.setup.context.humanoid,
+                               place.Apply(c.FramePose(c.num_frames() - 1)), scratch.get(), &b);
+        const auto& bed = scene.objects[g.object];
+        const Eigen::Vector3d pelvis = sim::ContactJointPosition(b, sim::kCjPelvis);
+        const Eigen::Vector3d head = sim::ContactJointPosition(b, sim::kCjHead);
+        double head_d = 1e9;
+        for (int p : g.pillows)
+          head_d = std::min(head_d, (scene::NearestPointOnPart(bed.parts[p], head) - head).norm());
+        EXPECT_LT((scene::NearestPointOnPart(bed.parts[g.mattress], pelvis) - pelvis).norm(), 0.3)
+            << c.meta().name;
+        EXPECT_LT(head_d, 0.3) << c.meta().name;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 4);
+}
+
+TEST(LieSkillTest, GoalsRewardAndThreshold) {
+  SkillConfig c = LieConfig();
+  c.reference_init_prob = 0;
+  c.max_contact_force = 0;
+  auto s = MakeSkillEnv(c, 2);
+  auto* lie = dynamic_cast<LieSkill*>(s.setup.skill.get());
+  EXPECT_EQ(s.env->obs_dim(), 223 + 60 + 256 + 64);
+  EXPECT_EQ(lie->goal_mask(0), (1u << sim::kCjPelvis) | (1u << sim::kCjHead));
+  // Pelvis 0.25 m above the mattress centre: near form; success needs both joints < 0.3 m.
+  const ObjectGeometry& g = lie->geometry(0);
+  const Eigen::Vector3d top = g.ToWorld(Eigen::Vector3d(
+      g.mattress_local.center().x(), g.mattress_local.center().y(), g.mattress_local.max.z()));
+  s.env->SetState(0, PoseAt(top + Eigen::Vector3d(0, 0, 0.25)));
+  const auto r = lie->Step(ViewOf(*s.env, 0));
+  const auto& b = s.env->bodies(0);
+  const Eigen::Vector3d dp = lie->goal(0, sim::kCjPelvis) - sim::ContactJointPosition(b, 0);
+  const Eigen::Vector3d dh =
+      lie->goal(0, sim::kCjHead) - sim::ContactJointPosition(b, sim::kCjHead);
+  EXPECT_NEAR(dp.norm(), 0.25, 1e-6);
+  EXPECT_NEAR(r.reward, 0.6 * std::exp(-10 * (dp.squaredNorm() + dh.squaredNorm())) + 0.4, 1e-5);
+  EXPECT_EQ(r.success, dh.norm() < 0.3);
+  EXPECT_NEAR(lie->goal_error(0), std::max(dp.norm(), dh.norm()), 1e-9);
+}
+
+}  // namespace
+}  // namespace sims::task
