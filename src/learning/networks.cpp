@@ -139,6 +139,13 @@ ActorCriticImpl::ActorCriticImpl(const std::vector<sim::ObsSegment>& segments, i
   }
 }
 
+void ActorCriticImpl::SetInitialActionMean(const std::vector<float>& mean) {
+  torch::NoGradGuard guard;
+  auto& last = actor_->layers().back();
+  SIMS_CHECK(static_cast<int64_t>(mean.size()) == last->bias.size(0));
+  last->bias.copy_(torch::tensor(mean));
+}
+
 torch::Tensor ActorCriticImpl::Mean(const torch::Tensor& normalised, const torch::Tensor& raw) {
   return actor_->forward(actor_encoder_->forward(normalised, raw));
 }

@@ -26,6 +26,13 @@ void SimVecEnv::Step(const float* actions) {
   RefreshStyles();
 }
 
+std::vector<float> SimVecEnv::initial_action_mean() const {
+  std::vector<float> a(sim::kNumDofs);
+  const double standing[sim::kNumDofs] = {0};
+  env_->humanoid().TargetsToAction(standing, a.data());
+  return a;
+}
+
 const int* SimVecEnv::style_ids() const { return env_->task() ? styles_.data() : nullptr; }
 
 void SimVecEnv::RefreshStyles() {

@@ -137,6 +137,7 @@ Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> 
   torch::manual_seed(config.seed);
   m.rng = Rng(config.seed);
   m.ac = ActorCritic(m.segments, m.act_dim, config.network);
+  if (const auto mean = m.env->initial_action_mean(); !mean.empty()) m.ac->SetInitialActionMean(mean);
   m.obs_norm = RunningMeanStd(m.obs_dim, config.ppo.obs_clip);
   m.value_norm = RunningMeanStd(1, 1e9);
   std::vector<torch::Tensor> params = m.ac->parameters();

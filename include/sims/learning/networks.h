@@ -83,6 +83,8 @@ class ActorCriticImpl : public torch::nn::Module {
   torch::Tensor Value(const torch::Tensor& normalised, const torch::Tensor& raw);
   /// Fixed log σ.
   double log_std() const { return log_std_; }
+  /// Sets the bias of the actor's output layer (the mean action of the fresh policy).
+  void SetInitialActionMean(const std::vector<float>& mean);
 
  private:
   ObsEncoder actor_encoder_{nullptr}, critic_encoder_{nullptr};

@@ -30,6 +30,7 @@ class SimVecEnv : public VecEnv {
   const uint8_t* successes() const override { return env_->successes(); }
   const float* amp_observations() const override { return env_->amp_observations(); }
   const int* style_ids() const override;
+  std::vector<float> initial_action_mean() const override;
   std::string SaveState() const override { return env_->SaveState(); }
   void LoadState(const std::string& state) override { env_->LoadState(state); }
 

@@ -47,6 +47,9 @@ class VecEnv {
   virtual const uint8_t* successes() const = 0;
   /// AMP observations of this transition [num_envs, amp_obs_dim()].
   virtual const float* amp_observations() const = 0;
+  /// Action the untrained policy should output on average (empty = zeros). For the humanoid
+  /// it holds the standing pose, where a zero action would bend knees and elbows to mid-range.
+  virtual std::vector<float> initial_action_mean() const { return {}; }
   /// Style id of each env's current episode (conditional AMP), or nullptr.
   virtual const int* style_ids() const { return nullptr; }
   /// Serialises all per-env state so training can resume bit-exactly.

@@ -1,0 +1,76 @@
+// Navigation for long walks: a free-space grid derived from the scene height grid (floor cells
+// farther than a body clearance from anything taller than a rug), A* over it, and the path cut
+// into waypoints the walk policy follows one by one.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sims/core/config.h"
+#include "sims/scene/height_grid.h"
+#include "sims/scene/scene.h"
+
+namespace sims::fsm {
+
+/// Free-space grid settings.
+struct NavigationConfig {
+  double resolution = 0.1;         ///< Cell size (m).
+  double clearance = 0.3;          ///< Body radius kept free around the path (m).
+  double max_floor_height = 0.05;  ///< Heights up to this are walkable floor (m).
+  double margin = 1.0;             ///< Grid extends this far beyond the scene (m).
+  double waypoint_spacing = 1.5;   ///< Maximum distance between waypoints (m).
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(resolution));
+    a->Visit(SIMS_NVP(clearance));
+    a->Visit(SIMS_NVP(max_floor_height));
+    a->Visit(SIMS_NVP(margin));
+    a->Visit(SIMS_NVP(waypoint_spacing));
+  }
+  /// Positive sizes.
+  void Validate() const;
+};
+
+/// Boolean occupancy of the floor with the body's clearance already applied.
+class FreeSpaceGrid {
+ public:
+  /// Samples `heights` over the scene bounds (plus margin) and dilates obstacles by clearance.
+  FreeSpaceGrid(const scene::Scene& scene, const scene::SceneHeightGrid& heights,
+                const NavigationConfig& config = {});
+  /// True when (x, y) is inside the grid and free.
+  bool Free(const Eigen::Vector2d& p) const;
+  /// True when the straight segment a→b stays in free cells.
+  bool SegmentFree(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+  /// Nearest free cell centre to p within `radius`, if any.
+  std::optional<Eigen::Vector2d> NearestFree(const Eigen::Vector2d& p, double radius) const;
+  /// A* shortest path (8-connected) from start to goal as cell centres, start and goal
+  /// snapped to the nearest free cells; empty when unreachable.
+  std::vector<Eigen::Vector2d> FindPath(const Eigen::Vector2d& start,
+                                        const Eigen::Vector2d& goal) const;
+  /// FindPath, shortened by line-of-sight and re-split so no leg exceeds waypoint_spacing;
+  /// the last waypoint is `goal` itself. Empty when unreachable.
+  std::vector<Eigen::Vector2d> Waypoints(const Eigen::Vector2d& start,
+                                         const Eigen::Vector2d& goal) const;
+  /// Grid size in cells.
+  int nx() const { return nx_; }
+  /// Grid size in cells.
+  int ny() const { return ny_; }
+  /// Number of free cells.
+  int64_t free_cells() const;
+
+ private:
+  int Index(int ix, int iy) const { return iy * nx_ + ix; }
+  bool CellOf(const Eigen::Vector2d& p, int* ix, int* iy) const;
+  Eigen::Vector2d Centre(int ix, int iy) const;
+
+  NavigationConfig config_;
+  double x0_ = 0, y0_ = 0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<uint8_t> free_;
+};
+
+}  // namespace sims::fsm
