@@ -123,7 +123,6 @@ Scene LoadMeshScene(const std::filesystem::path& path, const MeshLoadOptions& op
     }
     o.category = m.kind == CategoryTable::Kind::kObject ? m.category : options.category;
     o.important = m.kind == CategoryTable::Kind::kObject ? m.important : true;
-    if (o.instance.empty()) o.instance.clear();
     scene.AddObject(std::move(o));
   };
   if (options.split == "single") {

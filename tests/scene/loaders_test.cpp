@@ -79,6 +79,21 @@ TEST(MeshLoaderTest, ObjObjectsYUpToZUpWithCategories) {
   EXPECT_EQ(LoadMeshScene(TestData("scene/two_objects.obj"), o).objects.size(), 1u);
 }
 
+// Real files from Debian's assimp-testmodels in several formats.
+TEST(MeshLoaderTest, ReadsCommonFormats) {
+  const fs::path models = "/usr/share/assimp/models";
+  for (const char* file : {"glTF2/BoxTextured-glTF/BoxTextured.gltf", "FBX/box.fbx",
+                           "Collada/COLLADA.dae", "PLY/cube.ply", "BLEND/box.blend"}) {
+    const Scene s = LoadMeshScene(models / file);
+    EXPECT_GE(s.objects.size(), 1u) << file;
+    EXPECT_GT(s.TriangleCount(), 0u) << file;
+  }
+  // The glTF box is a unit cube; PLY is Z-up and kept as is.
+  const Aabb b = LoadMeshScene(models / "glTF2/BoxTextured-glTF/BoxTextured.gltf").Bounds();
+  EXPECT_NEAR(b.size().x(), 1.0, 1e-6);
+  EXPECT_NEAR(LoadMeshScene(models / "PLY/cube.ply").Bounds().max.z(), 1.0, 1e-6);
+}
+
 TEST(MeshLoaderTest, BadInput) {
   ExpectError([] { LoadMeshScene("/nonexistent/room.obj"); },
               {"/nonexistent/room.obj", "no such file"});
