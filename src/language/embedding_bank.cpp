@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <set>
 
 #include "sims/core/config.h"
 #include "sims/core/error.h"
@@ -21,8 +22,10 @@ Eigen::VectorXf Unit(const Eigen::VectorXf& z) {
   return n > 0 ? Eigen::VectorXf(z / n) : z;
 }
 
+// The k best entries by cosine; with `unique_text`, repeated caption texts (the same caption on
+// several clips has the same z) are listed once, with the first clip that carries them.
 std::vector<StyleMatch> Nearest(const std::vector<BankEntry>& entries, const Eigen::VectorXf& z,
-                                int k) {
+                                int k, bool unique_text) {
   const Eigen::VectorXf q = Unit(z);
   std::vector<std::pair<float, std::size_t>> scored;
   scored.reserve(entries.size());
@@ -30,17 +33,17 @@ std::vector<StyleMatch> Nearest(const std::vector<BankEntry>& entries, const Eig
     if (entries[i].z.size() != q.size()) continue;
     scored.emplace_back(entries[i].z.dot(q), i);
   }
-  const std::size_t n =
-      std::min<std::size_t>(scored.size(), static_cast<std::size_t>(std::max(k, 0)));
   // Ties resolve by insertion order so answers are reproducible.
-  std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(n), scored.end(),
-                    [](const auto& a, const auto& b) {
-                      return a.first != b.first ? a.first > b.first : a.second < b.second;
-                    });
+  std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
   std::vector<StyleMatch> out;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& e = entries[scored[i].second];
-    out.push_back({e.text, e.clip, scored[i].first});
+  std::set<std::string> seen;
+  for (const auto& [cosine, i] : scored) {
+    if (static_cast<int>(out.size()) >= k) break;
+    const auto& e = entries[i];
+    if (unique_text && !seen.insert(e.text).second) continue;
+    out.push_back({e.text, e.clip, cosine});
   }
   return out;
 }
@@ -87,11 +90,11 @@ const Eigen::VectorXf* EmbeddingBank::ClipZ(const std::string& clip) const {
 }
 
 std::vector<StyleMatch> EmbeddingBank::NearestCaptions(const Eigen::VectorXf& z, int k) const {
-  return Nearest(captions_, z, k);
+  return Nearest(captions_, z, k, /*unique_text=*/true);
 }
 
 std::vector<StyleMatch> EmbeddingBank::NearestClips(const Eigen::VectorXf& z, int k) const {
-  return Nearest(clips_, z, k);
+  return Nearest(clips_, z, k, /*unique_text=*/false);
 }
 
 void EmbeddingBank::Save(const fs::path& path) const {

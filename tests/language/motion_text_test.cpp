@@ -126,12 +126,18 @@ TEST(EmbeddingBankTest, NearestAndRoundTrip) {
   EXPECT_EQ(near[1].text, "stroll sadly");
   EXPECT_GT(near[0].cosine, near[1].cosine);
   EXPECT_EQ(bank.NearestClips(Eigen::Vector3f(0, 1, 0), 1)[0].clip, "happy");
+  // The same caption on another clip is listed once.
+  bank.AddCaption("walk sadly", "sad_too", Eigen::Vector3f(1, 0, 0));
+  const auto unique = bank.NearestCaptions(Eigen::Vector3f(1, 0.05f, 0), 3);
+  ASSERT_EQ(unique.size(), 3u);
+  EXPECT_EQ(unique[0].clip, "sad");
+  EXPECT_EQ(unique[1].text, "stroll sadly");
   EXPECT_NEAR(bank.ClipZ("sad")->norm(), 1.f, 1e-6f);
   EXPECT_EQ(bank.ClipZ("none"), nullptr);
   const fs::path f = sims::testing::TempDir("bank") / "bank.json";
   bank.Save(f);
   const auto back = EmbeddingBank::Load(f);
-  EXPECT_EQ(back.captions().size(), 3u);
+  EXPECT_EQ(back.captions().size(), 4u);
   EXPECT_EQ(back.NearestCaptions(Eigen::Vector3f(1, 0.05f, 0), 3)[2].text, "walk happily");
   std::ofstream(f)
       << R"({"format": "sims-embedding-bank-1", "dim": 3, "captions": [], "clips": [{"clip": "a", "z": [1, 2]}]})";

@@ -58,7 +58,8 @@ class EmbeddingBank {
   /// z of a clip, or nullptr.
   const Eigen::VectorXf* ClipZ(const std::string& clip) const;
 
-  /// The `k` caption entries most similar to `z` (highest cosine first).
+  /// The `k` caption entries most similar to `z` (highest cosine first; a caption text shared by
+  /// several clips is listed once, with the first such clip).
   std::vector<StyleMatch> NearestCaptions(const Eigen::VectorXf& z, int k) const;
   /// The `k` clip entries most similar to `z`.
   std::vector<StyleMatch> NearestClips(const Eigen::VectorXf& z, int k) const;
