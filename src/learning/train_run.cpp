@@ -7,6 +7,7 @@
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/progress.h"
+#include "sims/io/training_report.h"
 #include "sims/learning/motion_demo.h"
 #include "sims/learning/sim_vec_env.h"
 #include "sims/learning/trainer.h"
@@ -78,74 +79,13 @@ void TruncateLog(const std::filesystem::path& csv, int64_t last_iteration) {
   WriteFileAtomic(csv, kept);
 }
 
-std::string Svg(const std::string& name, const std::vector<double>& x,
-                const std::vector<double>& y) {
-  const double w = 440, h = 180, left = 60, top = 24;
-  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (size_t i = 0; i < x.size(); ++i) {
-    if (!std::isfinite(y[i])) continue;
-    xmin = std::min(xmin, x[i]), xmax = std::max(xmax, x[i]);
-    ymin = std::min(ymin, y[i]), ymax = std::max(ymax, y[i]);
-  }
-  std::ostringstream s;
-  s.precision(5);
-  s << "<figure><svg xmlns='http://www.w3.org/2000/svg' width='" << w + left + 20 << "' height='"
-    << h + top + 40 << "' data-series='" << name << "'>";
-  s << "<rect x='" << left << "' y='" << top << "' width='" << w << "' height='" << h
-    << "' fill='#fafafa' stroke='#999'/>";
-  s << "<text x='" << left << "' y='16' font-size='13' font-family='sans-serif'>" << name
-    << "</text>";
-  if (xmin <= xmax) {
-    if (xmax == xmin) xmax = xmin + 1;
-    if (ymax == ymin) ymax = ymin + 1e-9 + std::abs(ymin) * 1e-3;
-    s << "<polyline class='series' fill='none' stroke='#1f77b4' stroke-width='1.5' points='";
-    for (size_t i = 0; i < x.size(); ++i) {
-      if (!std::isfinite(y[i])) continue;
-      s << left + (x[i] - xmin) / (xmax - xmin) * w << ","
-        << top + h - (y[i] - ymin) / (ymax - ymin) * h << " ";
-    }
-    s << "'/>";
-    s << "<text x='2' y='" << top + 10 << "' font-size='11' font-family='sans-serif'>" << ymax
-      << "</text>";
-    s << "<text x='2' y='" << top + h << "' font-size='11' font-family='sans-serif'>" << ymin
-      << "</text>";
-    s << "<text x='" << left << "' y='" << top + h + 16
-      << "' font-size='11' font-family='sans-serif'>" << xmin << "</text>";
-    s << "<text x='" << left + w - 40 << "' y='" << top + h + 16
-      << "' font-size='11' font-family='sans-serif'>" << xmax << " (iteration)</text>";
-  }
-  s << "</svg></figure>\n";
-  return s.str();
-}
-
 }  // namespace
 
 void WriteTrainingReport(const std::filesystem::path& csv, const std::filesystem::path& html,
                          const std::string& title) {
-  std::ifstream in(csv);
-  if (!in) ThrowInputError(csv.string(), "", "a training log (CSV)", "missing");
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream hs(line);
-  for (std::string c; std::getline(hs, c, ',');) names.push_back(c);
-  std::vector<std::vector<double>> cols(names.size());
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    size_t k = 0;
-    for (std::string c; std::getline(ls, c, ',') && k < cols.size(); ++k)
-      cols[k].push_back(c == "nan" || c == "-nan" ? std::nan("") : std::stod(c));
-  }
-  std::ostringstream page;
-  page << "<!doctype html><html><head><meta charset='utf-8'><title>" << title
-       << "</title><style>body{font-family:sans-serif}figure{display:inline-block;margin:8px}</"
-          "style>"
-          "</head><body><h1>"
-       << title << "</h1><p>" << (cols.empty() ? 0 : cols[0].size())
-       << " iterations. One plot per column of log.csv.</p>\n";
-  for (size_t k = 1; k < names.size(); ++k) page << Svg(names[k], cols[0], cols[k]);
-  page << "</body></html>\n";
-  WriteFileAtomic(html, page.str());
+  // The report lives in io (grouped learning curves + one plot per column); kept here so
+  // callers of the learning API need not change.
+  io::WriteTrainingReport(csv, html, title);
 }
 
 int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
