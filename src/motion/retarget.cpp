@@ -89,8 +89,11 @@ void RetargetConfig::Validate() const {
   Require(std::abs(up.dot(fwd)) < 0.5, "forward_axis", "an axis perpendicular to up_axis");
   Require(scale >= 0, "scale", "metres per BVH unit (> 0), or 0 for automatic");
   Require(target_fps >= 0, "target_fps", "a frame rate (> 0), or 0 to keep the source rate");
-  Require(ground == "clip_min" || ground == "per_frame" || ground == "none", "ground",
-          "one of clip_min, per_frame, none");
+  Require(
+      ground == "percentile" || ground == "clip_min" || ground == "per_frame" || ground == "none",
+      "ground", "one of percentile, clip_min, per_frame, none");
+  Require(ground_percentile >= 0 && ground_percentile <= 100, "ground_percentile",
+          "a percentile between 0 and 100");
   Require(clamp_warning_deg >= 0, "clamp_warning_deg", "a non-negative angle");
   for (const auto& [body, j] : joints) {
     bool known = false;
@@ -258,15 +261,34 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
     std::vector<double> sole(fr.size());
     SkeletonPose sp;
     double lowest = 1e9;
+    // Flat feet only for the percentile: a foot tipped far over (lying, falling) reaches below
+    // where the source skeleton's ankle did, and would float the standing frames.
+    std::vector<double> flat_soles;
     for (std::size_t i = 0; i < fr.size(); ++i) {
       SkeletonForwardKinematics(skel, fr[i].root_pos, fr[i].root_rot, fr[i].dof_pos, &sp);
       sole[i] = std::min(SoleHeight(skel, sp, false), SoleHeight(skel, sp, true));
       lowest = std::min(lowest, sole[i]);
+      double flat = 1e9;
+      for (bool left : {false, true}) {
+        const Eigen::Vector3d up =
+            sp.rot[left ? sim::kLeftFoot : sim::kRightFoot] * Eigen::Vector3d::UnitZ();
+        if (up.z() > std::cos(30 * M_PI / 180)) flat = std::min(flat, SoleHeight(skel, sp, left));
+      }
+      if (flat < 1e9) flat_soles.push_back(flat);
+    }
+    double level = lowest;
+    if (config.ground == "percentile" && !flat_soles.empty()) {
+      std::vector<double> sorted = flat_soles;
+      const std::size_t k =
+          std::min(sorted.size() - 1,
+                   static_cast<std::size_t>(config.ground_percentile / 100.0 * sorted.size()));
+      std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
+      level = sorted[k];
     }
     for (std::size_t i = 0; i < fr.size(); ++i)
       fr[i].root_pos.z() +=
-          (config.ground == "per_frame" ? -sole[i] : -lowest) + config.ground_offset;
-    report.ground_shift = -lowest + config.ground_offset;
+          (config.ground == "per_frame" ? -sole[i] : -level) + config.ground_offset;
+    report.ground_shift = -level + config.ground_offset;
     clip = MotionClip(clip.fps(), std::move(fr), clip.meta());
   } else if (config.ground_offset != 0) {
     std::vector<MotionFrame> fr = clip.frames();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "sims/core/error.h"
 #include "sims/motion/rotation.h"
@@ -158,6 +159,75 @@ double ClampToLimits(const HumanoidSkeleton& skel, DofVector* dofs, DofVector* e
   return worst;
 }
 
+namespace {
+
+double Excess(const HumanoidSkeleton& skel, int dof, const Eigen::Ref<const Eigen::VectorXd>& v) {
+  double e = 0;
+  for (int k = 0; k < v.size(); ++k)
+    e += std::max({0.0, skel.lower[dof + k] - v[k], v[k] - skel.upper[dof + k]});
+  return e;
+}
+
+// Swivel candidates (rad) around the hint, tried in order when the hint hits a joint limit.
+const std::vector<double>& SwivelCandidates() {
+  static const std::vector<double> c = [] {
+    std::vector<double> v = {0.0};
+    for (int k = 1; k <= 18; ++k) v.push_back(k * M_PI / 36), v.push_back(-k * M_PI / 36);
+    return v;
+  }();
+  return c;
+}
+
+// Damped least squares on a limb's DoFs (within the limits) towards an end-body position and,
+// optionally, orientation. Used when the analytic solution had to be clamped: near 90° of
+// hip flexion the x and z hinges nearly align and clamping one of them alone moves the foot.
+double RefineLimb(const HumanoidSkeleton& skel, const Eigen::Vector3d& root_pos,
+                  const Eigen::Quaterniond& root_rot, int end_body, int first_dof, int num_dofs,
+                  const Eigen::Vector3d& p_target, const Eigen::Quaterniond* R_target,
+                  DofVector* dofs) {
+  constexpr double kRotWeight = 0.1;  // metres per radian
+  const int m = R_target ? 6 : 3;
+  auto residual = [&](const DofVector& d, Eigen::VectorXd* r) {
+    SkeletonPose sp;
+    SkeletonForwardKinematics(skel, root_pos, root_rot, d, &sp);
+    r->resize(m);
+    r->head<3>() = sp.pos[end_body] - p_target;
+    if (R_target)
+      r->tail<3>() = kRotWeight * QuatToRotationVector(R_target->conjugate() * sp.rot[end_body]);
+  };
+  Eigen::VectorXd r, r2;
+  residual(*dofs, &r);
+  double err = r.norm();
+  double lambda = 1e-3;
+  for (int it = 0; it < 60 && err > 1e-6; ++it) {
+    Eigen::MatrixXd J(m, num_dofs);
+    for (int k = 0; k < num_dofs; ++k) {
+      DofVector d = *dofs;
+      d[first_dof + k] += 1e-6;
+      residual(d, &r2);
+      J.col(k) = (r2 - r) / 1e-6;
+    }
+    const Eigen::MatrixXd A =
+        J.transpose() * J + lambda * Eigen::MatrixXd::Identity(num_dofs, num_dofs);
+    const Eigen::VectorXd step = A.ldlt().solve(-J.transpose() * r);
+    DofVector d = *dofs;
+    for (int k = 0; k < num_dofs; ++k)
+      d[first_dof + k] = std::clamp(d[first_dof + k] + step[k], skel.lower[first_dof + k],
+                                    skel.upper[first_dof + k]);
+    residual(d, &r2);
+    if (r2.norm() < err) {
+      *dofs = d, r = r2, err = r2.norm();
+      lambda = std::max(lambda * 0.3, 1e-7);
+    } else {
+      lambda *= 10;
+      if (lambda > 1e3) break;
+    }
+  }
+  return err;
+}
+
+}  // namespace
+
 LimbIkResult SolveLegIk(const HumanoidSkeleton& skel, bool left, const Eigen::Vector3d& root_pos,
                         const Eigen::Quaterniond& root_rot, const Eigen::Vector3d& p_W_ankle,
                         const Eigen::Quaterniond& R_W_foot, const Eigen::Vector3d& knee_dir_W,
@@ -182,33 +252,53 @@ LimbIkResult SolveLegIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
   const Eigen::Vector3d a2 = t.norm() > 1e-9 ? t.normalized() : Eigen::Vector3d(0, 0, -1);
   const Eigen::Vector3d b2 =
       Perpendicular(R_WPf.conjugate() * knee_dir_W, a2, Eigen::Vector3d::UnitX());
-  const Eigen::Quaterniond r_hip(AlignFrames(a, b, a2, b2));
+  const Eigen::Vector3d prev_hip = dofs->segment<3>(hip_dof);
+  const Eigen::Vector3d prev_ankle = dofs->segment<3>(ankle_dof);
+  const double kv = std::clamp(knee, skel.lower[knee_dof], skel.upper[knee_dof]);
 
-  LimbIkResult result;
-  const Eigen::Vector3d prev = dofs->segment<3>(hip_dof);
-  Eigen::Vector3d hip = DecomposeHingeTriple(r_hip, skel.lower.segment<3>(hip_dof),
-                                             skel.upper.segment<3>(hip_dof), &prev);
-  double kv = knee;
+  // Hip and ankle angles for a knee swivel φ about the hip–ankle line; near hip flexion of
+  // 90° the x and z hinges nearly align, so the swivel is searched to respect the limits.
+  Eigen::Vector3d hip, ankle;
+  double best = 1e18;
+  for (double phi : SwivelCandidates()) {
+    const Eigen::Vector3d b2s = Eigen::AngleAxisd(phi, a2) * b2;
+    const Eigen::Quaterniond r_hip(AlignFrames(a, b, a2, b2s));
+    const Eigen::Vector3d h = DecomposeHingeTriple(r_hip, skel.lower.segment<3>(hip_dof),
+                                                   skel.upper.segment<3>(hip_dof), &prev_hip);
+    const Eigen::Quaterniond R_shin =
+        R_WPf * sim::HingeTripleRotation(h[0], h[1], h[2]) *
+        Eigen::Quaterniond(Eigen::AngleAxisd(kv, Eigen::Vector3d::UnitY()));
+    const Eigen::Vector3d an = DecomposeHingeTriple(R_shin.conjugate() * R_W_foot.normalized(),
+                                                    skel.lower.segment<3>(ankle_dof),
+                                                    skel.upper.segment<3>(ankle_dof), &prev_ankle);
+    const double score =
+        Excess(skel, hip_dof, h) + Excess(skel, ankle_dof, an) + 1e-3 * std::abs(phi);
+    if (score < best) best = score, hip = h, ankle = an;
+    if (score < 1e-9) break;  // the hint itself is within the limits
+  }
   int clamped = 0;
   for (int k = 0; k < 3; ++k) clamped += ClampDof(skel, hip_dof + k, &hip[k]);
-  clamped += ClampDof(skel, knee_dof, &kv);
+  for (int k = 0; k < 3; ++k) clamped += ClampDof(skel, ankle_dof + k, &ankle[k]);
+  clamped += kv != knee;
   dofs->segment<3>(hip_dof) = hip;
   (*dofs)[knee_dof] = kv;
+  dofs->segment<3>(ankle_dof) = ankle;
 
   const Eigen::Quaterniond R_thigh = R_WPf * sim::HingeTripleRotation(hip[0], hip[1], hip[2]);
   const Eigen::Quaterniond R_shin =
       R_thigh * Eigen::Quaterniond(Eigen::AngleAxisd(kv, Eigen::Vector3d::UnitY()));
-  const Eigen::Quaterniond local = R_shin.conjugate() * R_W_foot.normalized();
-  const Eigen::Vector3d prev_ankle = dofs->segment<3>(ankle_dof);
-  Eigen::Vector3d ankle = DecomposeHingeTriple(local, skel.lower.segment<3>(ankle_dof),
-                                               skel.upper.segment<3>(ankle_dof), &prev_ankle);
-  for (int k = 0; k < 3; ++k) clamped += ClampDof(skel, ankle_dof + k, &ankle[k]);
-  dofs->segment<3>(ankle_dof) = ankle;
-
   const Eigen::Vector3d p_knee = p_hip + R_thigh * skel.offset[shin];
   const Eigen::Vector3d p_ankle = p_knee + R_shin * skel.offset[foot];
+  LimbIkResult result;
   result.position_error = (p_ankle - p_W_ankle).norm();
   result.clamped = clamped > 0;
+  if (clamped > 0 && t.norm() < (l1 + l2) * (1 - 1e-6)) {
+    const Eigen::Quaterniond R_foot = R_W_foot.normalized();
+    RefineLimb(skel, root_pos, root_rot, foot, hip_dof, 7, p_W_ankle, &R_foot, dofs);
+    SkeletonPose sp;
+    SkeletonForwardKinematics(skel, root_pos, root_rot, *dofs, &sp);
+    result.position_error = (sp.pos[foot] - p_W_ankle).norm();
+  }
   return result;
 }
 
@@ -235,11 +325,17 @@ LimbIkResult SolveArmIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
   const Eigen::Vector3d a2 = t.norm() > 1e-9 ? t.normalized() : Eigen::Vector3d(0, 0, -1);
   const Eigen::Vector3d b2 =
       Perpendicular(R_WPf.conjugate() * elbow_dir_W, a2, -Eigen::Vector3d::UnitX());
-  const Eigen::Quaterniond r_sh(AlignFrames(a, b, a2, b2));
-
   const Eigen::Vector3d prev = dofs->segment<3>(sh_dof);
-  Eigen::Vector3d sh = DecomposeHingeTriple(r_sh, skel.lower.segment<3>(sh_dof),
-                                            skel.upper.segment<3>(sh_dof), &prev);
+  Eigen::Vector3d sh;
+  double best = 1e18;
+  for (double phi : SwivelCandidates()) {
+    const Eigen::Quaterniond r_sh(AlignFrames(a, b, a2, Eigen::AngleAxisd(phi, a2) * b2));
+    const Eigen::Vector3d s = DecomposeHingeTriple(r_sh, skel.lower.segment<3>(sh_dof),
+                                                   skel.upper.segment<3>(sh_dof), &prev);
+    const double score = Excess(skel, sh_dof, s) + 1e-3 * std::abs(phi);
+    if (score < best) best = score, sh = s;
+    if (score < 1e-9) break;
+  }
   double ev = elbow;
   int clamped = 0;
   for (int k = 0; k < 3; ++k) clamped += ClampDof(skel, sh_dof + k, &sh[k]);
@@ -254,6 +350,17 @@ LimbIkResult SolveArmIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
   LimbIkResult result;
   result.position_error = (p_hand - p_W_hand).norm();
   result.clamped = clamped > 0;
+  if (clamped > 0 && result.position_error > 1e-4) {
+    // Refine with a pelvis placed so that the torso lands at (p_W_torso, R_W_torso).
+    const DofVector& d = *dofs;
+    const Eigen::Quaterniond R_t0 = sim::HingeTripleRotation(d[0], d[1], d[2]);
+    const Eigen::Quaterniond R_root = R_W_torso * (skel.rest[sim::kTorso] * R_t0).conjugate();
+    const Eigen::Vector3d p_root = p_W_torso - R_root * skel.offset[sim::kTorso];
+    RefineLimb(skel, p_root, R_root, hand, sh_dof, 4, p_W_hand, nullptr, dofs);
+    SkeletonPose sp;
+    SkeletonForwardKinematics(skel, p_root, R_root, *dofs, &sp);
+    result.position_error = (sp.pos[hand] - p_W_hand).norm();
+  }
   return result;
 }
 

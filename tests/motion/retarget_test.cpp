@@ -67,7 +67,7 @@ TEST_F(CmuRetarget, FeetOnTheFloorInStanceAndLimitsRespected) {
     }
     prev = cur;
   }
-  EXPECT_NEAR(lowest, 0.0, 1e-9);  // clip_min ground fix
+  EXPECT_GT(lowest, -0.03);  // percentile ground fix: a few landings dip slightly
   EXPECT_GT(stance, 200);
   EXPECT_GT(near_floor, 0.9 * stance) << near_floor << " of " << stance;
   // Few clamps: the map and rest alignment fit the CMU skeleton.
@@ -87,6 +87,29 @@ TEST_F(CmuRetarget, SegmentLengthsOfTheHumanoidArePreserved) {
   int plausible = 0;
   for (const auto& st : states) plausible += st.pos[0].z() > 0.6 && st.pos[0].z() < 1.3;
   EXPECT_GT(plausible, 0.9 * clip_->num_frames());
+}
+
+// A second real skeleton: Z-X-Y channel order, 100 fps, centimetres, other joint names
+// (the 100STYLE-style map fits it), resampled to 30 fps at a non-integer ratio.
+TEST(RetargetTest, BoxingClipWithAnotherHierarchy) {
+  const char kBoxing[] = "/usr/share/assimp/models/BVH/Boxing_Toes.bvh";
+  if (!std::filesystem::exists(kBoxing)) GTEST_SKIP() << "assimp-testmodels not installed";
+  const BvhMotion bvh = ReadBvh(kBoxing);
+  EXPECT_NEAR(bvh.fps(), 100.0, 1e-6);
+  RetargetReport report;
+  const MotionClip clip = RetargetBvh(bvh, LoadRetargetConfig(ConfigPath("retarget/100style.json")),
+                                      HumanoidSkeleton::Default(), &report, kBoxing);
+  EXPECT_EQ(clip.fps(), 30.0);
+  EXPECT_NEAR(clip.duration(), (bvh.num_frames - 1) / 100.0, 1.0 / 30);
+  EXPECT_NEAR(report.scale, 0.01, 0.003);  // centimetres
+  // Standing in a boxing stance at the start: both soles on the floor, root at hip height.
+  const HumanoidSkeleton& s = HumanoidSkeleton::Default();
+  SkeletonPose sp;
+  const MotionFrame& f = clip.frame(0);
+  SkeletonForwardKinematics(s, f.root_pos, f.root_rot, f.dof_pos, &sp);
+  EXPECT_LT(SoleHeight(s, sp, false), 0.05);
+  EXPECT_LT(SoleHeight(s, sp, true), 0.05);
+  EXPECT_GT(f.root_pos.z(), 0.7);
 }
 
 // Humanoid clip → BVH (Y-up and Z-up) → retarget back gives the same clip.

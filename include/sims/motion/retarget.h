@@ -48,9 +48,13 @@ struct RetargetConfig {
   std::string forward_axis = "z";  ///< BVH axis the character faces in its rest pose.
   double scale = 0.0;        ///< Metres per BVH unit; 0 = humanoid leg length / BVH leg length.
   double target_fps = 30.0;  ///< Output frame rate (0 keeps the source rate).
-  std::string ground = "clip_min";  ///< clip_min (lowest sole over the clip → 0), per_frame, none.
-  double ground_offset = 0.0;       ///< Height added after the ground fix (m).
-  double clamp_warning_deg = 2.0;   ///< Report joints clamped by more than this.
+  /// Ground fix from the foot soles: percentile (the ground_percentile-th lowest per-frame
+  /// sole height → 0; robust to falls and proportion mismatches), clip_min (lowest sole over
+  /// the clip → 0), per_frame (every frame's lowest sole → 0), none.
+  std::string ground = "percentile";
+  double ground_percentile = 1.0;               ///< Percentile for ground = percentile (0..100).
+  double ground_offset = 0.0;                   ///< Height added after the ground fix (m).
+  double clamp_warning_deg = 2.0;               ///< Report joints clamped by more than this.
   std::map<std::string, RetargetJoint> joints;  ///< Humanoid body name → BVH joint(s).
 
   /// Lists the fields for JSON binding.
@@ -62,6 +66,7 @@ struct RetargetConfig {
     a->Visit(SIMS_NVP(scale));
     a->Visit(SIMS_NVP(target_fps));
     a->Visit(SIMS_NVP(ground));
+    a->Visit(SIMS_NVP(ground_percentile));
     a->Visit(SIMS_NVP(ground_offset));
     a->Visit(SIMS_NVP(clamp_warning_deg));
     a->Visit(SIMS_NVP(joints));

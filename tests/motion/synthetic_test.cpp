@@ -1,0 +1,199 @@
+#include "sims/motion/synthetic.h"
+
+#include <cmath>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "common/test_util.h"
+#include "sims/motion/motion_library.h"
+#include "sims/sim/features.h"
+
+namespace sims::motion {
+namespace {
+
+// The whole catalogue, generated once (about a second).
+const std::vector<MotionClip>& Catalogue() {
+  static const std::vector<MotionClip> clips = [] {
+    SyntheticOptions o;
+    o.variants = 1;
+    return GenerateSyntheticClips(o);
+  }();
+  return clips;
+}
+
+const MotionClip& ByName(const std::string& name) {
+  for (const auto& c : Catalogue())
+    if (c.meta().name == name) return c;
+  ADD_FAILURE() << "no clip " << name;
+  return Catalogue().front();
+}
+
+double Correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = a.size();
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    sab += (a[i] - ma) * (b[i] - mb), saa += (a[i] - ma) * (a[i] - ma),
+        sbb += (b[i] - mb) * (b[i] - mb);
+  return sab / std::sqrt(saa * sbb);
+}
+
+TEST(SyntheticTest, CatalogueCoversSkillsWithLabels) {
+  std::map<std::string, int> skills;
+  std::map<std::string, int> emotions;
+  for (const MotionClip& c : Catalogue()) {
+    const MotionMeta& m = c.meta();
+    ++skills[m.skill];
+    ++emotions[m.emotion];
+    EXPECT_TRUE(m.synthetic) << m.name;
+    EXPECT_NE(m.source.find("synthetic"), std::string::npos);
+    EXPECT_GE(m.captions.size(), 3u) << m.name;
+    EXPECT_LE(m.captions.size(), 5u) << m.name;
+    EXPECT_NO_THROW(ValidateConfig(m, m.name));
+    EXPECT_FALSE(m.furniture.empty()) << m.name;
+    EXPECT_GT(c.duration(), 3.0) << m.name;
+    EXPECT_EQ(c.fps(), 30.0);
+  }
+  for (const char* s : {"walk", "idle", "sit", "lie", "reach", "getup"})
+    EXPECT_GE(skills[s], 2) << s;
+  EXPECT_GE(skills["walk"], 20);
+  for (const char* e :
+       {"neutral", "sad", "tired", "drunk", "hurried", "angry", "happy", "relaxed", "stressed"})
+    EXPECT_GE(emotions[e], 1) << e;
+  // Sit/lie clips carry their furniture.
+  EXPECT_GT(ByName("sit_down_chair").meta().params.at("furniture_height"), 0.35);
+  EXPECT_GT(ByName("lie_down_bed").meta().params.at("furniture_height"), 0.35);
+}
+
+// Joint limits, no floor penetration, little self-contact, planted feet do not slide.
+TEST(SyntheticTest, ClipsArePlausible) {
+  for (const MotionClip& c : Catalogue()) {
+    const ClipQuality q = MeasureClipQuality(c);
+    SCOPED_TRACE(c.meta().name);
+    EXPECT_LE(q.max_limit_excess, 1e-9);
+    EXPECT_GE(q.min_sole_height, -1e-3);
+    EXPECT_LE(q.max_floor_penetration, 1e-3);
+    EXPECT_LE(q.max_self_penetration, 0.03);
+    EXPECT_LE(q.max_stance_slide, 0.05);
+  }
+}
+
+TEST(SyntheticTest, WalkIsNatural) {
+  const MotionClip& c = ByName("walk_normal");
+  const int n = c.num_frames();
+  std::vector<double> r_arm(n), l_hip(n), z(n);
+  for (int f = 0; f < n; ++f) {
+    r_arm[f] = c.frame(f).dof_pos[7];   // right_shoulder_y (negative = forward)
+    l_hip[f] = c.frame(f).dof_pos[22];  // left_hip_y (negative = forward)
+    z[f] = c.frame(f).root_pos.z();
+  }
+  // The right arm swings forward with the left leg.
+  EXPECT_GT(Correlation(r_arm, l_hip), 0.6);
+  // The pelvis bobs by a few centimetres, lowest in double support.
+  const auto [lo, hi] = std::minmax_element(z.begin(), z.end());
+  EXPECT_GT(*hi - *lo, 0.02);
+  EXPECT_LT(*hi - *lo, 0.08);
+  // Average speed matches the recipe (1.2 m/s).
+  EXPECT_NEAR(c.meta().params.at("end_x") / c.duration(), 1.2, 0.05);
+  EXPECT_NEAR((c.frame(n - 1).root_pos - c.frame(0).root_pos).head<2>().norm() / c.duration(), 1.2,
+              0.06);
+  // Heel strike: when a sole lands, its lowest corner is at the heel.
+  const HumanoidSkeleton& skel = HumanoidSkeleton::Default();
+  int strikes = 0, heel_first = 0;
+  std::array<double, 2> prev_h = {1, 1};
+  for (int f = 0; f < n; ++f) {
+    SkeletonPose sp;
+    SkeletonForwardKinematics(skel, c.frame(f).root_pos, c.frame(f).root_rot, c.frame(f).dof_pos,
+                              &sp);
+    for (int side = 0; side < 2; ++side) {
+      const auto corners = FootBoxCorners(skel, sp, side == 1);
+      int lowest = 0;
+      for (int k = 1; k < 8; ++k)
+        if (corners[k].z() < corners[lowest].z()) lowest = k;
+      const double h = corners[lowest].z();
+      if (prev_h[side] > 0.004 && h <= 0.004) {
+        ++strikes;
+        heel_first += (lowest & 1) == 0;  // corner bit 0 = x sign: heel corners have x < 0
+      }
+      prev_h[side] = h;
+    }
+  }
+  EXPECT_GE(strikes, 10);
+  EXPECT_GE(heel_first, strikes - 1);
+}
+
+TEST(SyntheticTest, TurnsAndStops) {
+  const MotionClip& turn = ByName("walk_turn_in_place_left_90");
+  EXPECT_NEAR(turn.meta().params.at("end_yaw"), M_PI / 2, 1e-6);
+  EXPECT_NEAR(sim::HeadingAngle(turn.frame(turn.num_frames() - 1).root_rot), M_PI / 2, 0.1);
+  const MotionClip& stop = ByName("walk_start_stop_normal");
+  const double d = (stop.frame(stop.num_frames() - 1).root_pos - stop.frame(0).root_pos).norm();
+  EXPECT_GT(d, 3.0);
+  EXPECT_LT(d, 6.0);
+  // Standing still at both ends.
+  EXPECT_LT(stop.root_lin_vel(0).norm(), 0.05);
+  EXPECT_LT(stop.root_lin_vel(stop.num_frames() - 1).norm(), 0.05);
+}
+
+TEST(SyntheticTest, ReachAndSitHitTheirTargets) {
+  const MotionClip& r = ByName("reach_right_medium");
+  const HumanoidSkeleton& skel = HumanoidSkeleton::Default();
+  const MotionFrame& f = r.frame(static_cast<int>(2.0 * r.fps()));
+  SkeletonPose sp;
+  SkeletonForwardKinematics(skel, f.root_pos, f.root_rot, f.dof_pos, &sp);
+  const auto& p = r.meta().params;
+  EXPECT_LT((sp.pos[sim::kRightHand] -
+             Eigen::Vector3d(p.at("target_x"), p.at("target_y"), p.at("target_z")))
+                .norm(),
+            0.03);
+  const MotionClip& s = ByName("sit_down_chair");
+  const double seat = s.meta().params.at("furniture_height");
+  const double pelvis = s.frame(s.num_frames() - 1).root_pos.z();
+  EXPECT_GT(pelvis - seat, 0.05);
+  EXPECT_LT(pelvis - seat, 0.16);
+}
+
+TEST(SyntheticTest, DeterministicForASeed) {
+  SyntheticOptions o;
+  o.variants = 2;
+  o.skills = {"reach"};
+  o.seed = 5;
+  const auto a = GenerateSyntheticClips(o);
+  const auto b = GenerateSyntheticClips(o);
+  o.seed = 6;
+  const auto c = GenerateSyntheticClips(o);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a.size(), 12u);
+  bool differs = false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].num_frames(), b[i].num_frames());
+    for (int f = 0; f < a[i].num_frames(); ++f) {
+      ASSERT_EQ(a[i].frame(f).dof_pos, b[i].frame(f).dof_pos);
+      ASSERT_EQ(a[i].frame(f).root_pos, b[i].frame(f).root_pos);
+    }
+    differs = differs || a[i].meta().params != c[i].meta().params;
+  }
+  EXPECT_TRUE(differs);
+}
+
+TEST(SyntheticTest, DatasetLoadsIntoALibrary) {
+  const auto dir = testing::TempDir("synthetic");
+  std::vector<MotionClip> some = {ByName("walk_normal"), ByName("sit_idle_upright"),
+                                  ByName("lie_idle_back")};
+  const auto manifest = WriteMotionDataset(some, dir, "test");
+  MotionLibraryOptions o;
+  o.mirror = true;
+  const MotionLibrary lib = MotionLibrary::Load(manifest, nullptr, o);
+  EXPECT_EQ(lib.num_clips(), 6);
+  EXPECT_EQ(lib.weight(0), 2.0);  // walks weigh double
+  EXPECT_EQ(lib.Find("walk").size(), 2u);
+  std::vector<float> demos(8 * 1250);
+  Rng rng(1);
+  lib.SampleAmpDemos(rng, 8, demos.data());
+  for (float v : demos) ASSERT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace sims::motion
