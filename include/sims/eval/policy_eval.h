@@ -1,0 +1,75 @@
+// Policy evaluation (eval_policy): runs N trials of an exported skill policy and reports
+// success rate, contact error, success steps, time to success and falls.
+//
+// The policy file's metadata ("extra": the skill and env configs train_policy wrote) gives the
+// observation layout; the environment is rebuilt from it with evaluation settings:
+//   walk:    a target 3–5 m away, kept after success; success = the pelvis within
+//            walk_success_radius (0.5 m) of it at some step, without falling in the episode.
+//   objects: held-out procedural objects (dimensions outside the training ranges), default
+//            (standing) starts; success = the skill's success test held at some step without
+//            a fall.
+//   unified: random chains on held-out objects, or the steps of a UniHSI ScenePlan
+//            (n steps within n × 10 s); success = every step passed.
+// Trials run on parallel environments; each env runs trial after trial (deterministic for a
+// seed). Metrics per trial are taken at the step that ends it (before the env resets).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sims::eval {
+
+/// What to evaluate and how.
+struct PolicyEvalOptions {
+  std::filesystem::path checkpoint;    ///< Policy file written by train_policy (policy.pt).
+  std::string skill;                   ///< Expected skill ("" = the policy's).
+  int trials = 100;                    ///< Number of trials.
+  uint64_t seed = 0;                   ///< Environment seed.
+  std::filesystem::path config;        ///< Optional TrainConfig JSON replacing the metadata.
+  std::string scene_plan;              ///< UniHSI ScenePlan "plan.json" or "plan.json#id".
+  std::filesystem::path partnet_root;  ///< PartNet folder ("" = $SIMS_PARTNET_DIR, data/partnet).
+  int num_envs = 0;                    ///< Parallel environments (0 = min(trials, 16)).
+  int threads = 0;                     ///< Env threads (0 = the process setting).
+  bool held_out = true;                ///< Held-out object dimensions.
+};
+
+/// One trial.
+struct TrialResult {
+  bool success = false;      ///< Goal reached (all steps) without a fall.
+  bool fell = false;         ///< Ended by a fall, excessive force or instability.
+  int success_step = -1;     ///< First control step at which success held (−1: never).
+  double contact_error = 0;  ///< Skill goal error at the end of the trial (m).
+  int steps_completed = 0;   ///< Plan steps passed (single-step skills: 1 on success).
+  int num_steps = 1;         ///< Plan steps of the trial.
+  int length = 0;            ///< Control steps the trial ran.
+};
+
+/// Aggregated results.
+struct PolicyEvalReport {
+  std::string skill;                 ///< Evaluated skill.
+  std::string checkpoint;            ///< Policy file.
+  std::string scene;                 ///< Scene name (training ground or plan).
+  int trials = 0;                    ///< Trials run.
+  uint64_t seed = 0;                 ///< Seed.
+  double control_dt = 1.0 / 30.0;    ///< Seconds per control step.
+  double success_rate = 0;           ///< Fraction of successful trials.
+  double fall_rate = 0;              ///< Fraction of trials that ended by a fall.
+  double contact_error = 0;          ///< Mean final goal error (m).
+  double success_steps = 0;          ///< Mean plan steps passed per trial.
+  double mean_num_steps = 1;         ///< Mean plan steps per trial.
+  double time_to_success = 0;        ///< Mean seconds to first success (successful trials).
+  double mean_length = 0;            ///< Mean trial length (control steps).
+  std::vector<TrialResult> results;  ///< Per trial.
+
+  /// JSON with the aggregates and the per-trial results.
+  nlohmann::json ToJson() const;
+};
+
+/// Runs the evaluation; throws sims::Error naming the file and field on bad input (missing
+/// policy, metadata without configs, skill or observation-size mismatch, bad plan).
+PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& options);
+
+}  // namespace sims::eval

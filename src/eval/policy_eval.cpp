@@ -1,0 +1,257 @@
+#include "sims/eval/policy_eval.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "sims/core/config.h"
+#include "sims/core/error.h"
+#include "sims/core/log.h"
+#include "sims/core/paths.h"
+#include "sims/learning/train_run.h"
+#include "sims/learning/trainer.h"
+#include "sims/scene/loaders.h"
+#include "sims/task/object_skill.h"
+#include "sims/task/unified.h"
+#include "sims/task/walk.h"
+
+namespace sims::eval {
+
+namespace {
+
+// Forwards everything to the skill and records its per-env metrics right after each Step,
+// before the environment resets a finished env (which overwrites the skill's state).
+class RecordingHook : public sim::TaskHook {
+ public:
+  RecordingHook(std::shared_ptr<task::Skill> skill, int n)
+      : skill_(std::move(skill)), error_(n, 0.0), completed_(n, 0), num_steps_(n, 1) {
+    object_ = dynamic_cast<task::ObjectSkill*>(skill_.get());
+    unified_ = dynamic_cast<task::UnifiedSkill*>(skill_.get());
+    walk_ = dynamic_cast<task::WalkSkill*>(skill_.get());
+  }
+  int obs_dim() const override { return skill_->obs_dim(); }
+  std::vector<sim::ObsSegment> obs_segments() const override { return skill_->obs_segments(); }
+  void SampleInitialState(int i, Rng& rng, sim::InitialState* init) override {
+    skill_->SampleInitialState(i, rng, init);
+  }
+  void OnReset(const sim::EnvView& v, Rng& rng) override { skill_->OnReset(v, rng); }
+  void Observe(const sim::EnvView& v, float* out) const override { skill_->Observe(v, out); }
+  uint32_t contact_body_mask() const override { return skill_->contact_body_mask(); }
+  int style_id(int i) const override { return skill_->style_id(i); }
+  std::vector<double> SaveEnvState(int i) const override { return skill_->SaveEnvState(i); }
+  void LoadEnvState(int i, const std::vector<double>& s) override { skill_->LoadEnvState(i, s); }
+
+  sim::TaskStepResult Step(const sim::EnvView& v) override {
+    const sim::TaskStepResult r = skill_->Step(v);
+    const int i = v.env_id;
+    if (unified_) {
+      error_[i] = unified_->contact_error(i);
+      completed_[i] = unified_->steps_completed(i);
+      num_steps_[i] = static_cast<int>(unified_->steps(i).size());
+    } else if (object_) {
+      error_[i] = object_->goal_error(i);
+    } else if (walk_) {
+      error_[i] = (walk_->target(i) - v.pose->root_pos.head<2>()).norm();
+    }
+    return r;
+  }
+
+  double error(int i) const { return error_[i]; }
+  int completed(int i) const { return completed_[i]; }
+  int num_steps(int i) const { return num_steps_[i]; }
+  bool multi_step() const { return unified_ != nullptr; }
+
+ private:
+  std::shared_ptr<task::Skill> skill_;
+  task::ObjectSkill* object_ = nullptr;
+  task::UnifiedSkill* unified_ = nullptr;
+  task::WalkSkill* walk_ = nullptr;
+  std::vector<double> error_;
+  std::vector<int> completed_, num_steps_;
+};
+
+struct ResolvedConfig {
+  task::SkillConfig skill;
+  sim::EnvConfig env;
+};
+
+ResolvedConfig ResolveConfig(const PolicyEvalOptions& o, const learning::Policy& policy) {
+  ResolvedConfig rc;
+  const std::string src = o.checkpoint.string();
+  if (!o.config.empty()) {
+    const auto tc = LoadConfig<learning::TrainConfig>(o.config);
+    rc.skill = tc.skill;
+    rc.env = tc.env;
+  } else {
+    const nlohmann::json meta = nlohmann::json::parse(policy.metadata_json());
+    if (!meta.contains("extra") || !meta["extra"].contains("skill") ||
+        !meta["extra"].contains("env"))
+      ThrowInputError(src, "metadata.extra",
+                      "the skill and env configs train_policy stores with a policy (or --config)",
+                      "none");
+    rc.skill = ConfigFromJson<task::SkillConfig>(meta["extra"]["skill"], src + " (extra.skill)");
+    rc.env = ConfigFromJson<sim::EnvConfig>(meta["extra"]["env"], src + " (extra.env)");
+  }
+  if (!o.skill.empty() && o.skill != rc.skill.skill)
+    ThrowInputError(src, "extra.skill.skill", "a '" + o.skill + "' policy (--skill)",
+                    "a '" + rc.skill.skill + "' policy");
+  return rc;
+}
+
+}  // namespace
+
+nlohmann::json PolicyEvalReport::ToJson() const {
+  nlohmann::json per = nlohmann::json::array();
+  for (const auto& t : results)
+    per.push_back({{"success", t.success},
+                   {"fell", t.fell},
+                   {"success_step", t.success_step},
+                   {"contact_error", t.contact_error},
+                   {"steps_completed", t.steps_completed},
+                   {"num_steps", t.num_steps},
+                   {"length", t.length}});
+  return {{"skill", skill},
+          {"checkpoint", checkpoint},
+          {"scene", scene},
+          {"trials", trials},
+          {"seed", seed},
+          {"success_rate", success_rate},
+          {"fall_rate", fall_rate},
+          {"contact_error", contact_error},
+          {"success_steps", success_steps},
+          {"mean_num_steps", mean_num_steps},
+          {"time_to_success_s", time_to_success},
+          {"mean_length", mean_length},
+          {"control_dt", control_dt},
+          {"results", per}};
+}
+
+PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
+  if (o.trials <= 0)
+    ThrowInputError("--trials", "trials", "a positive count", std::to_string(o.trials));
+  const learning::Policy policy(o.checkpoint);
+  ResolvedConfig rc = ResolveConfig(o, policy);
+  task::SkillConfig& sc = rc.skill;
+  const int n_env = o.num_envs > 0 ? o.num_envs : std::min(o.trials, 16);
+
+  // Evaluation settings: standing starts, held-out objects, fixed walk targets 3–5 m away.
+  sc.held_out_objects = o.held_out;
+  sc.reference_init_prob = 0;
+  if (!sc.style_conditioned) sc.motion.manifest.clear();
+  if (sc.skill == "walk") {
+    sc.target_min_distance = 3.0;
+    sc.target_max_distance = 5.0;
+    sc.resample_target_on_success = false;
+  }
+  sim::EnvConfig ec = rc.env;
+  ec.num_envs = n_env;
+  ec.seed = o.seed;
+  ec.threads = o.threads;
+  ec.early_termination = true;
+
+  std::shared_ptr<const scene::Scene> scene;
+  task::ContactPlan plan;
+  std::string plan_path, plan_id;
+  if (!o.scene_plan.empty()) {
+    if (sc.skill != "unified")
+      ThrowInputError(o.checkpoint.string(), "extra.skill.skill",
+                      "a 'unified' policy to run a ScenePlan (--scene-plan)",
+                      "a '" + sc.skill + "' policy");
+    plan_path = o.scene_plan;
+    const auto hash = plan_path.find('#');
+    if (hash != std::string::npos) {
+      plan_id = plan_path.substr(hash + 1);
+      plan_path = plan_path.substr(0, hash);
+    }
+    std::filesystem::path partnet = o.partnet_root;
+    if (partnet.empty()) {
+      const char* env = std::getenv("SIMS_PARTNET_DIR");
+      partnet = env && *env ? std::filesystem::path(env) : DataPath("partnet");
+    }
+    scene = std::make_shared<const scene::Scene>(scene::LoadScenePlan(plan_path, partnet, plan_id));
+    plan = task::LoadContactPlan(plan_path, *scene, plan_id);
+    if (plan.steps.empty())
+      ThrowInputError(plan_path, plan.id, "a plan with at least one chain-of-contacts step",
+                      "no steps");
+    // UniHSI: a plan of n steps must finish within n × 10 s.
+    ec.episode_length = static_cast<int>(plan.steps.size()) * 300;
+  }
+
+  task::SkillSetup setup = task::CreateSkill(sc, n_env, o.seed, scene);
+  if (scene) dynamic_cast<task::UnifiedSkill&>(*setup.skill).SetPlan(plan.steps);
+  auto hook = std::make_shared<RecordingHook>(setup.skill, n_env);
+  sim::BatchedEnv env(setup.context.humanoid, ec, hook);
+  if (env.obs_dim() != policy.obs_dim())
+    ThrowInputError(o.checkpoint.string(), "obs_dim",
+                    std::to_string(env.obs_dim()) + " values, what the '" + sc.skill +
+                        "' environment built from the policy's metadata observes",
+                    std::to_string(policy.obs_dim()) +
+                        " (the policy was trained with another layout, e.g. heightmap size)");
+  if (env.action_dim() != policy.action_dim())
+    ThrowInputError(o.checkpoint.string(), "action_dim", std::to_string(env.action_dim()),
+                    std::to_string(policy.action_dim()));
+
+  PolicyEvalReport rep;
+  rep.skill = sc.skill;
+  rep.checkpoint = o.checkpoint.string();
+  rep.scene =
+      scene ? scene->name + (plan.id.empty() ? "" : " plan " + plan.id) : setup.context.scene->name;
+  rep.trials = o.trials;
+  rep.seed = o.seed;
+  rep.control_dt = env.control_dt();
+  rep.results.resize(o.trials);
+
+  // Each env runs trial after trial; env i's k-th trial is a fixed trial index.
+  std::vector<int> trial(n_env, -1);
+  int next = 0;
+  for (int i = 0; i < n_env && next < o.trials; ++i) trial[i] = next++;
+  int finished = 0;
+  std::vector<float> actions(static_cast<size_t>(n_env) * env.action_dim());
+  while (finished < o.trials) {
+    policy.Act(env.observations(), n_env, actions.data());
+    env.Step(actions.data());
+    for (int i = 0; i < n_env; ++i) {
+      if (trial[i] < 0) continue;
+      TrialResult& t = rep.results[trial[i]];
+      ++t.length;
+      if (env.successes()[i] && t.success_step < 0) t.success_step = t.length;
+      if (!env.dones()[i]) continue;
+      t.fell = env.terminated()[i] != 0;
+      t.contact_error = hook->error(i);
+      if (hook->multi_step()) {
+        t.steps_completed = hook->completed(i);
+        t.num_steps = hook->num_steps(i);
+        t.success = !t.fell && t.steps_completed == t.num_steps;
+      } else {
+        t.success = !t.fell && t.success_step >= 0;
+        t.steps_completed = t.success ? 1 : 0;
+      }
+      ++finished;
+      trial[i] = next < o.trials ? next++ : -1;
+    }
+  }
+
+  int successes = 0;
+  rep.mean_num_steps = 0;
+  for (const auto& t : rep.results) {
+    successes += t.success;
+    rep.fall_rate += t.fell;
+    rep.contact_error += t.contact_error;
+    rep.success_steps += t.steps_completed;
+    rep.mean_num_steps += t.num_steps;
+    rep.mean_length += t.length;
+    if (t.success) rep.time_to_success += t.success_step * rep.control_dt;
+  }
+  const double n = o.trials;
+  rep.success_rate = successes / n;
+  rep.fall_rate /= n;
+  rep.contact_error /= n;
+  rep.success_steps /= n;
+  rep.mean_num_steps /= n;
+  rep.mean_length /= n;
+  rep.time_to_success = successes ? rep.time_to_success / successes : 0.0;
+  spdlog::info("eval {}: {} trials, success {:.3f}, falls {:.3f}, contact error {:.3f} m",
+               rep.skill, rep.trials, rep.success_rate, rep.fall_rate, rep.contact_error);
+  return rep;
+}
+
+}  // namespace sims::eval

@@ -1,0 +1,171 @@
+#include "sims/eval/policy_eval.h"
+
+#include <gtest/gtest.h>
+
+#include "common/test_util.h"
+#include "sims/core/config.h"
+#include "sims/core/error.h"
+#include "sims/core/paths.h"
+#include "sims/learning/sim_vec_env.h"
+#include "sims/learning/train_run.h"
+#include "sims/learning/trainer.h"
+
+namespace sims::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A policy after one tiny PPO iteration on 2 envs, exported with train_policy's metadata.
+fs::path TinyPolicy(const task::SkillConfig& sc, int episode_length, const std::string& tag) {
+  sim::EnvConfig ec;
+  ec.num_envs = 2;
+  ec.threads = 2;
+  ec.seed = 1;
+  ec.episode_length = episode_length;
+  auto setup = task::CreateSkill(sc, ec.num_envs, ec.seed);
+  auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, ec, setup.skill);
+  learning::LearnerConfig lc;
+  lc.network.actor_hidden = {16};
+  lc.network.critic_hidden = {16};
+  lc.network.disc_hidden = {8};
+  lc.network.heightmap_hidden = {8};
+  lc.ppo.horizon = 4;
+  lc.ppo.minibatch_size = 8;
+  lc.ppo.mini_epochs = 1;
+  lc.amp.enabled = false;
+  learning::Trainer trainer(std::make_shared<learning::SimVecEnv>(env), nullptr, lc);
+  trainer.RunIteration();
+  const fs::path path = sims::testing::TempDir(tag) / "policy.pt";
+  const nlohmann::json extra = {{"skill", ConfigToJson(sc)}, {"env", ConfigToJson(ec)}};
+  trainer.ExportPolicy(path, extra.dump());
+  return path;
+}
+
+task::SkillConfig WalkConfig() {
+  task::SkillConfig sc;
+  sc.skill = "walk";
+  return sc;
+}
+
+void ExpectError(const std::function<void()>& f, const std::vector<std::string>& words) {
+  try {
+    f();
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    for (const auto& w : words)
+      EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << e.what() << " / " << w;
+  }
+}
+
+TEST(PolicyEvalTest, WalkSmokeAndDeterminism) {
+  const fs::path policy = TinyPolicy(WalkConfig(), 40, "eval_walk");
+  PolicyEvalOptions o;
+  o.checkpoint = policy;
+  o.trials = 3;
+  o.seed = 5;
+  o.num_envs = 2;
+  o.threads = 2;
+  const PolicyEvalReport r = EvaluatePolicy(o);
+  EXPECT_EQ(r.skill, "walk");
+  ASSERT_EQ(r.results.size(), 3u);
+  for (const auto& t : r.results) {
+    EXPECT_GT(t.length, 0);
+    EXPECT_LE(t.length, 40);
+    EXPECT_EQ(t.num_steps, 1);
+    // Targets are 3–5 m away; an untrained policy ends 2.5 m or more from them.
+    EXPECT_GT(t.contact_error, 2.0);
+    EXPECT_FALSE(t.success);
+  }
+  EXPECT_EQ(r.success_rate, 0.0);
+  const nlohmann::json j = r.ToJson();
+  for (const char* key : {"success_rate", "fall_rate", "contact_error", "success_steps",
+                          "time_to_success_s", "results", "trials"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["results"].size(), 3u);
+  EXPECT_EQ(EvaluatePolicy(o).ToJson().dump(), j.dump());  // same seed, same report
+}
+
+TEST(PolicyEvalTest, BadInputNamesTheProblem) {
+  const fs::path policy = TinyPolicy(WalkConfig(), 20, "eval_bad");
+  PolicyEvalOptions o;
+  o.checkpoint = policy;
+  o.trials = 1;
+  o.skill = "sit";
+  ExpectError([&] { EvaluatePolicy(o); }, {"policy.pt", "'sit'", "'walk'"});
+  o.skill.clear();
+  // A config whose heightmap differs from the policy's layout.
+  learning::TrainConfig tc;
+  tc.skill = WalkConfig();
+  tc.skill.heightmap.size_x = tc.skill.heightmap.size_y = 8;
+  const fs::path cfg = sims::testing::TempDir("eval_cfg") / "walk.json";
+  SaveConfig(cfg, tc);
+  o.config = cfg;
+  ExpectError([&] { EvaluatePolicy(o); }, {"policy.pt", "obs_dim", "metadata"});
+  o.config.clear();
+  o.scene_plan = sims::testing::TestData("scene/sceneplan.json").string();
+  ExpectError([&] { EvaluatePolicy(o); }, {"unified", "'walk'"});
+  o.scene_plan.clear();
+  o.checkpoint = policy.parent_path() / "missing.pt";
+  EXPECT_THROW(EvaluatePolicy(o), Error);
+}
+
+TEST(PolicyEvalTest, SitOnHeldOutObjects) {
+  task::SkillConfig sc;
+  sc.skill = "sit";
+  sc.num_objects = 2;
+  const fs::path policy = TinyPolicy(sc, 30, "eval_sit");
+  PolicyEvalOptions o;
+  o.checkpoint = policy;
+  o.trials = 2;
+  o.num_envs = 2;
+  o.threads = 2;
+  const PolicyEvalReport r = EvaluatePolicy(o);
+  EXPECT_EQ(r.skill, "sit");
+  EXPECT_EQ(r.scene, "training_ground_sit");
+  for (const auto& t : r.results) {
+    EXPECT_LE(t.length, 30);
+    EXPECT_GT(t.contact_error, 0.5);  // it starts ≥ 1 m beyond the seat's footprint
+  }
+}
+
+TEST(PolicyEvalTest, UnifiedOnAScenePlan) {
+  task::SkillConfig sc;
+  sc.skill = "unified";
+  sc.num_objects = 2;
+  const fs::path policy = TinyPolicy(sc, 30, "eval_unified");
+  PolicyEvalOptions o;
+  o.checkpoint = policy;
+  o.trials = 2;
+  o.num_envs = 2;
+  o.threads = 2;
+  o.scene_plan = sims::testing::TestData("scene/sceneplan.json").string() + "#0000";
+  o.partnet_root = sims::testing::TestData("scene/partnet");
+  const PolicyEvalReport r = EvaluatePolicy(o);
+  EXPECT_EQ(r.skill, "unified");
+  EXPECT_NE(r.scene.find("sceneplan"), std::string::npos);
+  EXPECT_EQ(r.mean_num_steps, 2.0);
+  for (const auto& t : r.results) {
+    EXPECT_EQ(t.num_steps, 2);
+    EXPECT_LE(t.length, 2 * 300);  // n steps within n × 10 s
+    EXPECT_LE(t.steps_completed, 2);
+  }
+  o.scene_plan = sims::testing::TestData("scene/sceneplan.json").string() + "#0001";
+  ExpectError([&] { EvaluatePolicy(o); }, {"sceneplan.json", "0001", "no steps"});
+}
+
+TEST(SkillConfigsTest, ShippedConfigsLoadAndCreateTheirSkills) {
+  for (const char* name : {"walk", "sit", "lie", "reach", "getup", "sit_getup", "unified"}) {
+    SCOPED_TRACE(name);
+    auto tc =
+        LoadConfig<learning::TrainConfig>(ConfigPath(std::string("skills/") + name + ".json"));
+    EXPECT_EQ(tc.skill.skill, name);
+    EXPECT_LE(tc.env.num_envs, 128);   // CPU-sized
+    tc.skill.motion.manifest.clear();  // the synthetic clips are generated at setup time
+    tc.skill.num_objects = static_cast<int>(std::max<size_t>(1, tc.skill.object_categories.size()));
+    const auto setup = task::CreateSkill(tc.skill, 1, 1);
+    EXPECT_EQ(setup.skill->name(), name);
+  }
+}
+
+}  // namespace
+}  // namespace sims::eval
