@@ -68,9 +68,7 @@ bool FreeSpaceGrid::Free(const Eigen::Vector2d& p) const {
   return CellOf(p, &ix, &iy) && free_[Index(ix, iy)];
 }
 
-int64_t FreeSpaceGrid::free_cells() const {
-  return std::count(free_.begin(), free_.end(), 1);
-}
+int64_t FreeSpaceGrid::free_cells() const { return std::count(free_.begin(), free_.end(), 1); }
 
 bool FreeSpaceGrid::SegmentFree(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
   const double len = (b - a).norm();
@@ -81,7 +79,7 @@ bool FreeSpaceGrid::SegmentFree(const Eigen::Vector2d& a, const Eigen::Vector2d&
 }
 
 std::optional<Eigen::Vector2d> FreeSpaceGrid::NearestFree(const Eigen::Vector2d& p,
-                                                           double radius) const {
+                                                          double radius) const {
   int cx, cy;
   CellOf(p, &cx, &cy);
   const int k = static_cast<int>(std::ceil(radius / config_.resolution));
@@ -160,8 +158,10 @@ std::vector<Eigen::Vector2d> FreeSpaceGrid::Waypoints(const Eigen::Vector2d& sta
   std::vector<Eigen::Vector2d> out;
   for (size_t k = 1; k < corners.size(); ++k) {
     const Eigen::Vector2d a = corners[k - 1], b = corners[k];
-    const int pieces = std::max(1, static_cast<int>(std::ceil((b - a).norm() / config_.waypoint_spacing)));
-    for (int p = 1; p <= pieces; ++p) out.push_back(a + (b - a) * (static_cast<double>(p) / pieces));
+    const int pieces =
+        std::max(1, static_cast<int>(std::ceil((b - a).norm() / config_.waypoint_spacing)));
+    for (int p = 1; p <= pieces; ++p)
+      out.push_back(a + (b - a) * (static_cast<double>(p) / pieces));
   }
   return out;
 }

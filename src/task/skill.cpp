@@ -7,12 +7,12 @@
 #include "sims/core/paths.h"
 #include "sims/sim/features.h"
 #include "sims/sim/scene_physics.h"
-#include "sims/task/walk.h"
-#include "sims/task/sit.h"
+#include "sims/task/getup.h"
 #include "sims/task/lie.h"
 #include "sims/task/reach.h"
-#include "sims/task/getup.h"
+#include "sims/task/sit.h"
 #include "sims/task/unified.h"
+#include "sims/task/walk.h"
 
 namespace sims::task {
 
@@ -67,6 +67,8 @@ void Skill::SetGoal(int env_id, int joint, const Eigen::Vector3d& target) {
 void Skill::ClearGoals(int env_id) { mask_[env_id] = 0; }
 
 void Skill::SetStyle(int env_id, int style) { style_[env_id] = style; }
+
+bool Skill::BeginInstruction(const sim::EnvView&, const InstructionTarget&) { return false; }
 
 void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
   const auto& clips = ReferenceClips();
@@ -153,13 +155,8 @@ void Skill::LoadSkillState(int, const double*, size_t) {}
 
 const std::vector<SkillInfo>& GetSkills() {
   static const std::vector<SkillInfo> skills = {
-      WalkSkillInfo(),
-      SitSkillInfo(),
-      LieSkillInfo(),
-      ReachSkillInfo(),
-      GetUpSkillInfo(),
-      SitGetUpSkillInfo(),
-      UnifiedSkillInfo(),
+      WalkSkillInfo(),  SitSkillInfo(),      LieSkillInfo(),     ReachSkillInfo(),
+      GetUpSkillInfo(), SitGetUpSkillInfo(), UnifiedSkillInfo(),
   };
   return skills;
 }

@@ -77,6 +77,21 @@ void WalkSkill::OnReset(const sim::EnvView& view, Rng& rng) {
   SetTarget(i, SampleTarget(root, target_rng_[i]));
 }
 
+bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
+  Eigen::Vector2d p;
+  if (target.has_point) {
+    p = target.point.head<2>();
+  } else if (target.object >= 0 && context_.scene &&
+             target.object < static_cast<int>(context_.scene->objects.size())) {
+    p = context_.scene->objects[target.object].Bounds().center().head<2>();
+  } else {
+    return false;
+  }
+  prev_velocity_[view.env_id] = view.pose->root_lin_vel.head<2>();
+  SetTarget(view.env_id, p);
+  return true;
+}
+
 double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& root,
                          const Eigen::Vector2d& velocity, const Eigen::Vector2d& prev_velocity,
                          const Eigen::Vector2d& facing, double target_speed) {

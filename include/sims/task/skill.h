@@ -109,6 +109,15 @@ struct SkillContext {
   int num_envs = 1;                                           ///< Per-env state size.
 };
 
+/// What a story instruction asks of a skill in the scene the env simulates (FSM).
+struct InstructionTarget {
+  int object = -1;                                  ///< Scene object index (−1 = none).
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< Walk/stand target or reach point (world).
+  bool has_point = false;                           ///< `point` is set.
+  int hand = -1;                                    ///< Reach: kCjLeftHand / kCjRightHand.
+  std::string height;                               ///< Reach: "low", "medium" or "high".
+};
+
 /// Base class of all skills (see the file comment).
 class Skill : public sim::TaskHook {
  public:
@@ -137,6 +146,10 @@ class Skill : public sim::TaskHook {
   void ClearGoals(int env_id);
   /// Forces the style of env i (FSM: z from a caption); −1 = none.
   void SetStyle(int env_id, int style);
+  /// Starts a task mid-episode (the FSM switching skills): sets the goals for `target` from
+  /// the character's current state without resetting it. Returns false when the skill cannot
+  /// pursue that target (e.g. an object without the part it needs).
+  virtual bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target);
   /// The configuration.
   const SkillConfig& config() const { return config_; }
   /// The context.

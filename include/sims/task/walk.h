@@ -25,6 +25,8 @@ class WalkSkill : public Skill {
   std::string name() const override { return "walk"; }
   void OnReset(const sim::EnvView& view, Rng& rng) override;
   sim::TaskStepResult Step(const sim::EnvView& view) override;
+  /// Walks to target.point (xy), or to the object's centre when only an object is given.
+  bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
 
   /// Sets env i's target (world xy; z is ignored) — used by the FSM and evaluation.
   void SetTarget(int env_id, const Eigen::Vector2d& target_xy);

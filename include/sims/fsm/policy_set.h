@@ -1,0 +1,45 @@
+// The per-skill policies a story runs with: a JSON file (assets/policies/policies.json)
+// mapping skill names to ExportPolicy() files, relative to the JSON file's folder.
+//   {"description": "...", "policies": {"walk": "walk/policy.pt", "sit": "sit/policy.pt"}}
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "sims/core/config.h"
+
+namespace sims::fsm {
+
+/// A policy-set file.
+struct PolicySetConfig {
+  std::string description;                      ///< Free text.
+  std::map<std::string, std::string> policies;  ///< skill → policy file.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(description));
+    a->Visit(SIMS_NVP(policies));
+  }
+};
+
+/// A loaded policy set with resolved paths.
+struct PolicySet {
+  std::filesystem::path source;                           ///< The JSON file.
+  std::map<std::string, std::filesystem::path> policies;  ///< skill → absolute policy file.
+
+  /// True when the set has a policy for `skill`.
+  bool Has(const std::string& skill) const { return policies.count(skill) > 0; }
+  /// The file for `skill`; throws sims::Error naming the set file, the field and the skills
+  /// it does have.
+  const std::filesystem::path& File(const std::string& skill) const;
+};
+
+/// Loads and checks a policy set: known skill names, files that exist.
+PolicySet LoadPolicySet(const std::filesystem::path& path);
+
+/// assets/policies/policies.json.
+std::filesystem::path DefaultPolicySetPath();
+
+}  // namespace sims::fsm

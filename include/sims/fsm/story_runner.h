@@ -1,0 +1,111 @@
+// The dual-aware finite state machine: runs one simulated character through a story's
+// instructions with the per-skill policies. A skill hands over to the next when its success
+// condition has held for `success_hold_steps` (InterScene/SIMS rule); every skill has a
+// time-out; a fall triggers get-up and then a retry; a failed step is recorded and the story
+// goes on. All skills share one observation layout, so switching a skill only switches the
+// task hook's goals and the policy (each policy keeps its own normaliser).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sims/core/config.h"
+#include "sims/fsm/instruction.h"
+#include "sims/fsm/navigation.h"
+#include "sims/fsm/policy_set.h"
+#include "sims/io/motion_record.h"
+#include "sims/scene/scene.h"
+
+namespace sims::fsm {
+
+/// FSM settings.
+struct StoryOptions {
+  int success_hold_steps = 20;        ///< Success must hold this long before switching (steps).
+  double walk_timeout_s = 25.0;       ///< Time-out of a walk instruction.
+  double skill_timeout_s = 10.0;      ///< Time-out of the other skills (SIMS: 10 s per step).
+  int max_retries = 1;                ///< Retries of an instruction after a fall.
+  double fallen_head_height = 0.4;    ///< Head below this ...
+  double fallen_pelvis_height = 0.4;  ///< ... and pelvis below this = fallen (m).
+  double waypoint_radius = 0.6;       ///< Switch to the next waypoint within this (m).
+  NavigationConfig navigation;        ///< Free-space grid and waypoints.
+  uint64_t seed = 0;                  ///< Start placement and simulator seeds.
+  int threads = 1;                    ///< Environment threads.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(success_hold_steps));
+    a->Visit(SIMS_NVP(walk_timeout_s));
+    a->Visit(SIMS_NVP(skill_timeout_s));
+    a->Visit(SIMS_NVP(max_retries));
+    a->Visit(SIMS_NVP(fallen_head_height));
+    a->Visit(SIMS_NVP(fallen_pelvis_height));
+    a->Visit(SIMS_NVP(waypoint_radius));
+    a->Visit(SIMS_NVP(navigation));
+    a->Visit(SIMS_NVP(seed));
+    a->Visit(SIMS_NVP(threads));
+  }
+  /// Positive times and counts.
+  void Validate() const;
+};
+
+/// What happened to one instruction.
+struct KeyframeOutcome {
+  int keyframe = -1;         ///< Plan keyframe (−1 for FSM-inserted recoveries).
+  std::string skill;         ///< Skill.
+  std::string caption;       ///< Caption.
+  std::string emotion;       ///< Emotion.
+  std::string object;        ///< Bound object.
+  double start_time = 0;     ///< Seconds since the story start.
+  double end_time = 0;       ///< Seconds since the story start.
+  bool success = false;      ///< Success held for the hold time.
+  double contact_error = 0;  ///< Final distance the success test measures (m).
+  int falls = 0;             ///< Falls during the instruction.
+  int retries = 0;           ///< Retries after falls.
+  std::string note;          ///< Time-out, unplaced, skill could not start, ...
+};
+
+/// A finished story.
+struct StoryResult {
+  std::vector<KeyframeOutcome> keyframes;  ///< One per instruction, in order.
+  double success_rate = 0;                 ///< Successful instructions / instructions.
+  int success_steps = 0;                   ///< Instructions completed before the first failure.
+  double mean_contact_error = 0;           ///< Over instructions with an object goal.
+  int falls = 0;                           ///< Total falls.
+  double duration_s = 0;                   ///< Simulated seconds.
+};
+
+/// Runs stories in one scene.
+class StoryRunner {
+ public:
+  /// Compiles the scene, loads the policies the set provides and builds one skill hook per
+  /// policy; throws sims::Error naming the policy file on an incompatible policy.
+  StoryRunner(std::shared_ptr<const scene::Scene> scene, const PolicySet& policies,
+              const StoryOptions& options);
+  ~StoryRunner();
+
+  /// Checks that every instruction's skill has a policy (and walk/getup for navigation and
+  /// recovery); throws sims::Error naming the policy-set file otherwise.
+  void CheckPolicies(const std::vector<Instruction>& instructions) const;
+  /// Runs the instructions from `start` (a free floor point; z ignored); appends frames and
+  /// keyframe annotations to `recorder` when given.
+  StoryResult Run(const std::vector<Instruction>& instructions, const Eigen::Vector3d& start,
+                  double start_heading, io::MotionRecordBuilder* recorder);
+  /// A free floor point to start from: in front of the first instruction's object if any,
+  /// else the centre of the scene's free space.
+  Eigen::Vector3d DefaultStart(const std::vector<Instruction>& instructions) const;
+  /// The compiled physics geometry (reused for rendering).
+  const sim::StaticGeometry& geometry() const;
+  /// The humanoid model of the scene.
+  std::shared_ptr<const sim::Humanoid> humanoid() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// result.json content.
+nlohmann::json StoryResultToJson(const StoryResult& result);
+
+}  // namespace sims::fsm

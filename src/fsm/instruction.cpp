@@ -1,0 +1,113 @@
+#include "sims/fsm/instruction.h"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "sims/scene/contact_targets.h"
+#include "sims/sim/humanoid.h"
+
+namespace sims::fsm {
+
+namespace {
+std::vector<std::string> Words(const std::string& text) {
+  std::vector<std::string> out;
+  std::string w;
+  for (char c : text) {
+    if (std::isalpha(static_cast<unsigned char>(c))) {
+      w += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    } else if (!w.empty()) {
+      out.push_back(w);
+      w.clear();
+    }
+  }
+  if (!w.empty()) out.push_back(w);
+  return out;
+}
+
+bool HasAny(const std::vector<std::string>& words, std::initializer_list<const char*> keys) {
+  for (const auto& w : words)
+    for (const char* k : keys)
+      if (w == k) return true;
+  return false;
+}
+
+// Centre of the room's floor polygon, for walks that end on free floor.
+std::optional<Eigen::Vector2d> RoomCentre(const scene::Scene& scene, const std::string& room) {
+  for (const auto& r : scene.rooms) {
+    if (r.id != room || r.floor_polygon.empty()) continue;
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const auto& p : r.floor_polygon) c += p;
+    return c / static_cast<double>(r.floor_polygon.size());
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+std::string ReachHeightFromCaption(const std::string& caption) {
+  const auto w = Words(caption);
+  if (HasAny(w, {"low", "lower", "floor", "ground", "bottom", "down", "pick", "bend", "knee"}))
+    return "low";
+  if (HasAny(w, {"high", "higher", "top", "upper", "shelf", "up", "above", "overhead", "tiptoe"}))
+    return "high";
+  return "medium";
+}
+
+int ReachHandFromCaption(const std::string& caption) {
+  return HasAny(Words(caption), {"left"}) ? sim::kCjLeftHand : sim::kCjRightHand;
+}
+
+int FindObjectIndex(const scene::Scene& scene, const std::string& instance) {
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].instance == instance) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scene::Scene& scene,
+                                           const scene::RayCaster& caster) {
+  std::vector<Instruction> out;
+  for (const auto& k : plan.keyframes) {
+    Instruction in;
+    in.keyframe = k.index;
+    in.skill = k.skill;
+    in.caption = k.caption;
+    in.emotion = k.emotion;
+    in.object_name = k.object;
+    in.placed = k.placed;
+    in.note = k.note;
+    const int obj = k.object.empty() ? -1 : FindObjectIndex(scene, k.object);
+    if (!k.object.empty() && obj < 0) {
+      in.placed = false;
+      in.note = "object '" + k.object + "' is not in the scene";
+    }
+    in.target.object = obj;
+    if (k.skill == "walk") {
+      if (obj >= 0) {
+        const auto stands = scene::StandPoints(scene, caster, obj);
+        if (!stands.empty()) {
+          in.target.point = stands.front();
+          in.target.has_point = true;
+        } else {
+          in.note = "no free stand point around '" + k.object + "'; walking to its centre";
+        }
+      } else if (auto c = RoomCentre(scene, k.room)) {
+        in.target.point = {c->x(), c->y(), 0};
+        in.target.has_point = true;
+      } else if (in.placed) {
+        in.placed = false;
+        in.note = "walk keyframe without an object or a room to walk to";
+      }
+    } else if (k.skill == "reach") {
+      in.target.hand = ReachHandFromCaption(k.caption);
+      in.target.height = ReachHeightFromCaption(k.caption);
+    }
+    if ((k.skill == "sit" || k.skill == "lie" || k.skill == "reach") && obj < 0 && in.placed) {
+      in.placed = false;
+      in.note = k.skill + " keyframe without a bound object";
+    }
+    out.push_back(std::move(in));
+  }
+  return out;
+}
+
+}  // namespace sims::fsm

@@ -1,0 +1,412 @@
+#include "sims/fsm/story_runner.h"
+
+#include <cmath>
+#include <map>
+
+#include "sims/core/error.h"
+#include "sims/core/log.h"
+#include "sims/core/progress.h"
+#include "sims/learning/trainer.h"
+#include "sims/scene/contact_targets.h"
+#include "sims/sim/env.h"
+#include "sims/sim/features.h"
+#include "sims/sim/scene_physics.h"
+#include "sims/task/object_skill.h"
+#include "sims/task/walk.h"
+
+namespace sims::fsm {
+
+void StoryOptions::Validate() const {
+  Require(success_hold_steps >= 1, "success_hold_steps", "at least 1 step");
+  Require(walk_timeout_s > 0 && skill_timeout_s > 0, "skill_timeout_s", "positive time-outs (s)");
+  Require(max_retries >= 0, "max_retries", "a non-negative count");
+  Require(waypoint_radius > 0, "waypoint_radius", "a positive radius (m)");
+  Require(threads >= 0, "threads", "0 (all) or a positive count");
+}
+
+namespace {
+
+// The env's task hook during a story: forwards to the skill of the current instruction. The
+// skills' own episode logic (success-held truncation, force termination, new walk targets)
+// is ignored: the FSM decides when an instruction ends, and the character is never reset.
+class StoryTask : public sim::TaskHook {
+ public:
+  explicit StoryTask(std::shared_ptr<task::Skill> layout) : layout_(std::move(layout)) {}
+  void set_current(task::Skill* s) { current_ = s; }
+  task::Skill* current() const { return current_; }
+  void set_start(const sim::HumanoidPose& p) { start_ = p; }
+  const sim::TaskStepResult& last() const { return last_; }
+
+  int obs_dim() const override { return layout_->obs_dim(); }
+  std::vector<sim::ObsSegment> obs_segments() const override { return layout_->obs_segments(); }
+  void SampleInitialState(int, Rng&, sim::InitialState* init) override { init->pose = start_; }
+  void OnReset(const sim::EnvView&, Rng&) override {}
+  sim::TaskStepResult Step(const sim::EnvView& view) override {
+    if (!current_) return {};
+    last_ = current_->Step(view);
+    sim::TaskStepResult r = last_;
+    r.terminate = r.truncate = false;
+    return r;
+  }
+  void Observe(const sim::EnvView& view, float* out) const override {
+    (current_ ? current_ : layout_.get())->Observe(view, out);
+  }
+
+ private:
+  std::shared_ptr<task::Skill> layout_;
+  task::Skill* current_ = nullptr;
+  sim::HumanoidPose start_;
+  sim::TaskStepResult last_;
+};
+
+struct LoadedPolicy {
+  std::unique_ptr<learning::Policy> policy;
+  task::SkillConfig skill_config;
+  sim::EnvConfig env_config;
+};
+
+LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& file) {
+  LoadedPolicy p;
+  p.policy = std::make_unique<learning::Policy>(file);
+  const auto meta = nlohmann::json::parse(p.policy->metadata_json());
+  if (!meta.contains("extra") || !meta["extra"].contains("skill"))
+    ThrowInputError(file.string(), "metadata.extra.skill",
+                    "the skill config train_policy stores with the policy", "none");
+  p.skill_config = ConfigFromJson<task::SkillConfig>(meta["extra"]["skill"], file.string());
+  if (meta["extra"].contains("env"))
+    p.env_config = ConfigFromJson<sim::EnvConfig>(meta["extra"]["env"], file.string());
+  const std::string trained = p.skill_config.skill;
+  // sit_getup policies serve both skills; otherwise the policy must be for this skill.
+  if (trained != skill && !(trained == "sit_getup" && (skill == "sit" || skill == "getup")))
+    ThrowInputError(file.string(), "metadata.extra.skill.skill",
+                    "a policy trained for '" + skill + "'", "'" + trained + "'");
+  // A story never resamples targets or loads clips: the FSM sets every goal.
+  p.skill_config.resample_target_on_success = false;
+  p.skill_config.motion.manifest.clear();
+  p.skill_config.skill = skill;
+  return p;
+}
+
+}  // namespace
+
+struct StoryRunner::Impl {
+  std::shared_ptr<const scene::Scene> scene;
+  StoryOptions options;
+  PolicySet policy_set;
+  sim::StaticGeometry geometry;
+  task::SkillContext context;
+  std::map<std::string, LoadedPolicy> policies;
+  std::map<std::string, std::shared_ptr<task::Skill>> skills;
+  std::map<std::string, std::string> skill_errors;  // why a skill could not be built here
+  std::unique_ptr<FreeSpaceGrid> free_space;
+  std::shared_ptr<StoryTask> task;
+  std::unique_ptr<sim::BatchedEnv> env;
+  std::vector<float> action;
+  int step = 0;
+  io::MotionRecordBuilder* recorder = nullptr;
+
+  double Now() const { return step * env->control_dt(); }
+
+  bool Fallen() const {
+    const auto& b = env->bodies(0);
+    return b.pos[sim::kHead].z() < options.fallen_head_height &&
+           b.pos[sim::kPelvis].z() < options.fallen_pelvis_height;
+  }
+
+  sim::EnvView View() const {
+    sim::EnvView v;
+    v.env_id = 0;
+    v.humanoid = &env->humanoid();
+    v.data = const_cast<sim::BatchedEnv&>(*env).data(0);
+    v.pose = &env->pose(0);
+    v.bodies = &env->bodies(0);
+    v.progress = env->progress(0);
+    v.control_dt = env->control_dt();
+    return v;
+  }
+
+  void StepOnce(const std::string& skill) {
+    policies.at(skill).policy->Act(env->observations(), 1, action.data());
+    env->Step(action.data());
+    ++step;
+    if (recorder) recorder->AddFrame(env->pose(0));
+  }
+
+  // Error of the current goal: pelvis-to-target for walks, the skill's own measure otherwise.
+  double GoalError(const std::string& skill, const task::InstructionTarget& target) const {
+    if (skill == "walk") return (env->pose(0).root_pos.head<2>() - target.point.head<2>()).norm();
+    if (auto* obj = dynamic_cast<const task::ObjectSkill*>(skills.at(skill).get()))
+      return obj->goal_error(0);
+    return 0.0;
+  }
+
+  enum class Outcome { kSuccess, kTimeout, kFall, kCannotStart };
+
+  // Runs one attempt of an instruction; walks follow A* waypoints.
+  Outcome Attempt(const Instruction& in, double* error, std::string* note) {
+    task::Skill* skill = skills.at(in.skill).get();
+    task->set_current(skill);
+    const double timeout = in.skill == "walk" ? options.walk_timeout_s : options.skill_timeout_s;
+    std::vector<Eigen::Vector2d> waypoints;
+    task::InstructionTarget target = in.target;
+    if (in.skill == "walk" && target.has_point) {
+      waypoints = free_space->Waypoints(env->pose(0).root_pos.head<2>(), target.point.head<2>());
+      if (waypoints.empty()) waypoints = {target.point.head<2>()};  // no path: head straight
+    }
+    size_t wp = 0;
+    auto begin_leg = [&]() {
+      task::InstructionTarget t = target;
+      if (!waypoints.empty()) t.point = {waypoints[wp].x(), waypoints[wp].y(), 0};
+      return skill->BeginInstruction(View(), t);
+    };
+    if (!begin_leg()) {
+      *note = "the " + in.skill + " skill cannot pursue this target";
+      return Outcome::kCannotStart;
+    }
+    const double start = Now();
+    int held = 0;
+    while (Now() - start < timeout) {
+      StepOnce(in.skill);
+      if (Fallen()) {
+        *error = GoalError(in.skill, target);
+        return Outcome::kFall;
+      }
+      if (!waypoints.empty() && wp + 1 < waypoints.size() &&
+          (env->pose(0).root_pos.head<2>() - waypoints[wp]).norm() < options.waypoint_radius) {
+        ++wp;
+        begin_leg();
+        continue;
+      }
+      const bool final_leg = waypoints.empty() || wp + 1 == waypoints.size();
+      held = final_leg && env->successes()[0] ? held + 1 : 0;
+      if (held >= options.success_hold_steps) {
+        *error = GoalError(in.skill, target);
+        return Outcome::kSuccess;
+      }
+    }
+    *error = GoalError(in.skill, target);
+    *note = "time-out after " + std::to_string(static_cast<int>(timeout)) + " s";
+    return Outcome::kTimeout;
+  }
+
+  // After a fall: get up where the character lies (if a get-up policy exists).
+  bool Recover() {
+    if (!skills.count("getup")) return false;
+    Instruction up;
+    up.skill = "getup";
+    up.target.point = env->pose(0).root_pos;
+    up.target.has_point = true;
+    double err = 0;
+    std::string note;
+    return Attempt(up, &err, &note) == Outcome::kSuccess;
+  }
+};
+
+StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const PolicySet& policies,
+                         const StoryOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  auto& m = *impl_;
+  ValidateConfig(options, "story options");
+  m.scene = std::move(scene);
+  m.options = options;
+  m.policy_set = policies;
+  m.geometry = sim::CompileSceneGeometry(*m.scene);
+  m.context.humanoid = std::make_shared<const sim::Humanoid>(sim::BuildModel(m.geometry));
+  m.context.scene = m.scene;
+  m.context.ray_caster = std::make_shared<const scene::RayCaster>(*m.scene);
+  m.context.height_grid = std::make_shared<const scene::SceneHeightGrid>(
+      *m.scene, *m.context.ray_caster, scene::HeightGridConfig{});
+  m.context.num_envs = 1;
+  m.free_space =
+      std::make_unique<FreeSpaceGrid>(*m.scene, *m.context.height_grid, options.navigation);
+  sim::EnvConfig env_config;
+  std::shared_ptr<task::Skill> layout;
+  int obs_dim = -1;
+  for (const auto& [skill, file] : policies.policies) {
+    LoadedPolicy p = LoadPolicy(skill, file);
+    try {
+      auto s = task::FindSkill(skill).create(p.skill_config, m.context);
+      if (obs_dim < 0) {
+        obs_dim = sim::kSelfObsDim + s->obs_dim();
+        env_config = p.env_config;
+        layout = s;
+      }
+      if (sim::kSelfObsDim + s->obs_dim() != obs_dim || p.policy->obs_dim() != obs_dim)
+        ThrowInputError(file.string(), "obs_dim",
+                        "the observation width shared by the story's policies (" +
+                            std::to_string(obs_dim) + ")",
+                        std::to_string(p.policy->obs_dim()));
+      m.skills[skill] = s;
+      m.policies[skill] = std::move(p);
+    } catch (const Error& e) {
+      if (std::string(e.what()).find(file.string()) != std::string::npos) throw;
+      m.skill_errors[skill] = e.what();  // e.g. no bed in this scene: fatal only if needed
+    }
+  }
+  if (!layout)
+    ThrowInputError(policies.source.string(), "policies", "at least one usable policy", "none");
+  env_config.num_envs = 1;
+  env_config.early_termination = false;
+  env_config.episode_length = 1 << 30;
+  env_config.random_heading = false;
+  env_config.spawn_radius = 0;
+  env_config.threads = 1;
+  env_config.seed = options.seed;
+  m.task = std::make_shared<StoryTask>(layout);
+  m.env = std::make_unique<sim::BatchedEnv>(m.context.humanoid, env_config, m.task);
+  m.action.assign(sim::kNumDofs, 0.0f);
+}
+
+StoryRunner::~StoryRunner() = default;
+
+const sim::StaticGeometry& StoryRunner::geometry() const { return impl_->geometry; }
+std::shared_ptr<const sim::Humanoid> StoryRunner::humanoid() const {
+  return impl_->context.humanoid;
+}
+
+void StoryRunner::CheckPolicies(const std::vector<Instruction>& instructions) const {
+  const auto& m = *impl_;
+  std::vector<std::string> needed = {"walk"};
+  for (const auto& in : instructions)
+    if (in.placed) needed.push_back(in.skill);
+  for (const auto& s : needed) {
+    if (m.skills.count(s)) continue;
+    if (m.skill_errors.count(s))
+      ThrowInputError(m.policy_set.File(s).string(), "policies." + s,
+                      "a skill that can run in this scene", m.skill_errors.at(s));
+    m.policy_set.File(s);  // throws: no policy for this skill
+  }
+}
+
+Eigen::Vector3d StoryRunner::DefaultStart(const std::vector<Instruction>& instructions) const {
+  const auto& m = *impl_;
+  for (const auto& in : instructions) {
+    if (in.target.object < 0) continue;
+    const auto stands = scene::StandPoints(*m.scene, *m.context.ray_caster, in.target.object);
+    for (const auto& p : stands) {
+      // Start a little away from the first object so the story opens with a walk.
+      const Eigen::Vector2d away =
+          p.head<2>() +
+          1.5 * (p.head<2>() - m.scene->objects[in.target.object].Bounds().center().head<2>())
+                    .normalized();
+      if (m.free_space->Free(away)) return {away.x(), away.y(), 0};
+      if (m.free_space->Free(p.head<2>())) return p;
+    }
+  }
+  const auto c = m.scene->Bounds().center();
+  if (auto f = m.free_space->NearestFree(c.head<2>(), 20.0)) return {f->x(), f->y(), 0};
+  return {0, 0, 0};
+}
+
+StoryResult StoryRunner::Run(const std::vector<Instruction>& instructions,
+                             const Eigen::Vector3d& start, double start_heading,
+                             io::MotionRecordBuilder* recorder) {
+  auto& m = *impl_;
+  CheckPolicies(instructions);
+  m.recorder = recorder;
+  m.step = 0;
+  sim::HumanoidPose pose;
+  pose.root_pos = {start.x(), start.y(), sim::kDefaultRootHeight};
+  pose.root_rot = Eigen::AngleAxisd(start_heading, Eigen::Vector3d::UnitZ());
+  m.task->set_start(pose);
+  m.task->set_current(nullptr);
+  m.env->Reset();
+  if (recorder) recorder->AddFrame(m.env->pose(0));
+
+  StoryResult result;
+  ProgressReporter progress("story", static_cast<int64_t>(instructions.size()), "keyframes", 5.0);
+  bool failed_before = false;
+  double error_sum = 0;
+  int error_count = 0;
+  for (size_t k = 0; k < instructions.size(); ++k) {
+    const Instruction& in = instructions[k];
+    KeyframeOutcome out;
+    out.keyframe = in.keyframe;
+    out.skill = in.skill;
+    out.caption = in.caption;
+    out.emotion = in.emotion;
+    out.object = in.object_name;
+    out.start_time = m.Now();
+    io::KeyframeAnnotation note;
+    note.index = in.keyframe >= 0 ? in.keyframe : static_cast<int>(k);
+    note.skill = in.skill;
+    note.caption = in.caption;
+    note.emotion = in.emotion;
+    note.furniture = in.object_name;
+    if (!in.placed) {
+      out.note = "not placed: " + in.note;
+      if (recorder) recorder->AddKeyframe(note);
+    } else {
+      if (recorder) recorder->BeginKeyframe(note);
+      for (int attempt = 0;; ++attempt) {
+        double err = 0;
+        std::string why;
+        const auto o = m.Attempt(in, &err, &why);
+        out.contact_error = err;
+        if (o == Impl::Outcome::kSuccess) {
+          out.success = true;
+          break;
+        }
+        if (o == Impl::Outcome::kFall) {
+          ++out.falls;
+          const bool up = m.Recover();
+          if (up && attempt < m.options.max_retries) {
+            ++out.retries;
+            continue;
+          }
+          out.note = up ? "fell; retries exhausted" : "fell and could not get up";
+          break;
+        }
+        out.note = why;
+        break;
+      }
+      if (recorder) recorder->EndKeyframe(out.success, out.note);
+    }
+    out.end_time = m.Now();
+    if (in.target.object >= 0 || in.skill == "walk") {
+      error_sum += out.contact_error;
+      ++error_count;
+    }
+    if (!out.success) failed_before = true;
+    if (!failed_before) ++result.success_steps;
+    result.falls += out.falls;
+    spdlog::info("keyframe {} {} '{}' {}: {} ({:.1f}-{:.1f} s, error {:.2f} m){}", k, in.skill,
+                 in.caption, in.object_name, out.success ? "success" : "failed", out.start_time,
+                 out.end_time, out.contact_error, out.note.empty() ? "" : " — " + out.note);
+    result.keyframes.push_back(out);
+    progress.Update(static_cast<int64_t>(k + 1));
+  }
+  int ok = 0;
+  for (const auto& o : result.keyframes) ok += o.success;
+  result.success_rate =
+      result.keyframes.empty() ? 0.0 : static_cast<double>(ok) / result.keyframes.size();
+  result.mean_contact_error = error_count ? error_sum / error_count : 0.0;
+  result.duration_s = m.Now();
+  m.recorder = nullptr;
+  return result;
+}
+
+nlohmann::json StoryResultToJson(const StoryResult& r) {
+  nlohmann::json ks = nlohmann::json::array();
+  for (const auto& k : r.keyframes)
+    ks.push_back({{"keyframe", k.keyframe},
+                  {"skill", k.skill},
+                  {"caption", k.caption},
+                  {"emotion", k.emotion},
+                  {"object", k.object},
+                  {"start_time", k.start_time},
+                  {"end_time", k.end_time},
+                  {"success", k.success},
+                  {"contact_error", k.contact_error},
+                  {"falls", k.falls},
+                  {"retries", k.retries},
+                  {"note", k.note}});
+  return {{"keyframes", ks},
+          {"success_rate", r.success_rate},
+          {"success_steps", r.success_steps},
+          {"mean_contact_error", r.mean_contact_error},
+          {"falls", r.falls},
+          {"duration_s", r.duration_s}};
+}
+
+}  // namespace sims::fsm
