@@ -2,6 +2,7 @@
 
 #include "sims/core/config.h"
 #include "sims/core/error.h"
+#include "sims/scene/contact_targets.h"
 
 namespace sims::task {
 
@@ -19,6 +20,23 @@ std::array<ContactType, sim::kNumContactJoints> ContactStep::types() const {
   t.fill(ContactType::kNone);
   for (const auto& p : pairs) t[p.joint] = p.type;
   return t;
+}
+
+std::array<JointPair, sim::kNumContactJoints> ResolveStep(const ContactStep& step,
+                                                          const scene::Scene& scene,
+                                                          const sim::BodyStates& b) {
+  std::array<JointPair, sim::kNumContactJoints> pairs;
+  for (const auto& p : step.pairs) {
+    if (p.type == ContactType::kNone) continue;
+    JointPair& jp = pairs[p.joint];
+    jp.type = p.type;
+    jp.joint = sim::ContactJointPosition(b, p.joint);
+    jp.target = p.target_joint >= 0
+                    ? sim::ContactJointPosition(b, p.target_joint)
+                    : scene::NearestSamplePoint(scene.objects[p.object].parts[p.part], jp.joint);
+    jp.direction = p.direction;
+  }
+  return pairs;
 }
 
 namespace {

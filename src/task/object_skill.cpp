@@ -201,7 +201,8 @@ void ObjectSkill::SetObjectOverride(int env_id, int k) {
 uint32_t ObjectSkill::contact_body_mask() const {
   using namespace sim;
   return (1u << kLeftFoot) | (1u << kRightFoot) | (1u << kLeftHand) | (1u << kRightHand) |
-         (1u << kPelvis) | (1u << kLeftThigh) | (1u << kRightThigh) | (1u << kHead);
+         (1u << kPelvis) | (1u << kLeftThigh) | (1u << kRightThigh) | (1u << kTorso) |
+         (1u << kHead);
 }
 
 double ObjectSkill::ContactForce(const sim::EnvView& view) {

@@ -175,19 +175,7 @@ void UnifiedSkill::SampleTask(int i, Rng& rng) {
 
 std::array<JointPair, sim::kNumContactJoints> UnifiedSkill::Pairs(const ContactStep& step,
                                                                   const sim::BodyStates& b) const {
-  std::array<JointPair, sim::kNumContactJoints> pairs;
-  for (const auto& p : step.pairs) {
-    if (p.type == ContactType::kNone) continue;
-    JointPair& jp = pairs[p.joint];
-    jp.type = p.type;
-    jp.joint = sim::ContactJointPosition(b, p.joint);
-    jp.target =
-        p.target_joint >= 0
-            ? sim::ContactJointPosition(b, p.target_joint)
-            : scene::NearestSamplePoint(context_.scene->objects[p.object].parts[p.part], jp.joint);
-    jp.direction = p.direction;
-  }
-  return pairs;
+  return ResolveStep(step, *context_.scene, b);
 }
 
 void UnifiedSkill::UpdateGoals(int i, const std::array<JointPair, sim::kNumContactJoints>& pairs) {

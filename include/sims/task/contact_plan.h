@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sims/scene/scene.h"
+#include "sims/sim/state.h"
 #include "sims/task/contact_reward.h"
 
 namespace sims::task {
@@ -43,6 +44,13 @@ struct ContactStep {
   /// Per-joint pair types (kNone where the joint has no pair).
   std::array<ContactType, sim::kNumContactJoints> types() const;
 };
+
+/// The step's per-joint goals for body states `b` (what the unified skill observes and rewards):
+/// for each pair its type, the joint's position, its target — the part's surface sample nearest
+/// to the joint (UniHSI), or the other joint — and the direction; kNone elsewhere.
+std::array<JointPair, sim::kNumContactJoints> ResolveStep(const ContactStep& step,
+                                                          const scene::Scene& scene,
+                                                          const sim::BodyStates& b);
 
 /// A resolved plan.
 struct ContactPlan {

@@ -85,7 +85,8 @@ class ObjectSkill : public Skill {
   ObjectSkill(const SkillConfig& config, const SkillContext& context);
 
   void SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) override;
-  /// UniHSI's contact bodies: feet, hands, pelvis, thighs and head.
+  /// Bodies that may touch furniture: UniHSI's feet, hands, pelvis, thighs and head, plus the
+  /// torso (back rests, mattresses).
   uint32_t contact_body_mask() const override;
 
   /// Geometry of the objects this skill uses (indices into the scene's objects in `object`).
