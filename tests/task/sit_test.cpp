@@ -223,5 +223,21 @@ TEST(SitSkillTest, SnapshotRestoresTheEpisode) {
                            sizeof(float) * 3 * s.env->obs_dim()));
 }
 
+TEST(SitSkillTest, SameSeedSameEpisodesAtAnyThreadCount) {
+  SkillConfig c = SitConfig();
+  auto run = [&](int threads) {
+    auto setup = CreateSkill(c, 4, 1);
+    sim::EnvConfig ec;
+    ec.num_envs = 4;
+    ec.threads = threads;
+    ec.seed = 3;
+    sim::BatchedEnv env(setup.context.humanoid, ec, setup.skill);
+    std::vector<float> act(4 * 28, -0.2f);
+    for (int t = 0; t < 8; ++t) env.Step(act.data());
+    return std::vector<float>(env.observations(), env.observations() + 4 * env.obs_dim());
+  };
+  EXPECT_EQ(run(1), run(2));
+}
+
 }  // namespace
 }  // namespace sims::task

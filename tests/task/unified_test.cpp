@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "sims/core/error.h"
+#include "sims/scene/contact_targets.h"
 #include "sims/scene/loaders.h"
 #include "task/task_test_util.h"
 
@@ -160,6 +161,30 @@ TEST(ContactPlanTest, ScenePlanFixtureBecomesSteps) {
   // The default plan is the first; a plan without steps is empty.
   EXPECT_EQ(LoadContactPlan(json, s).id, "0000");
   EXPECT_TRUE(LoadContactPlan(json, s, "0001").steps.empty());
+}
+
+TEST(ContactPlanTest, ResolveStepGivesGoalsTypesAndDirections) {
+  const auto json = sims::testing::TestData("scene/sceneplan.json");
+  const scene::Scene s =
+      scene::LoadScenePlan(json, sims::testing::TestData("scene/partnet"), "0000");
+  const ContactPlan plan = LoadContactPlan(json, s, "0000");
+  const sim::Humanoid h(sim::BuildModel());
+  sim::MjDataPtr d = sim::MakeData(h.model());
+  sim::BodyStates b;
+  sim::ForwardKinematics(h, PoseAt(Eigen::Vector3d(0.9, 2.0, 1.5)), d.get(), &b);
+  const auto pairs = ResolveStep(plan.steps[1], s, b);
+  const auto& seat = s.objects[0].parts[plan.steps[1].pairs[0].part];
+  for (int j = 0; j < sim::kNumContactJoints; ++j) {
+    if (j != sim::kCjPelvis) {
+      EXPECT_EQ(pairs[j].type, ContactType::kNone);
+      continue;
+    }
+    EXPECT_EQ(pairs[j].type, ContactType::kContact);
+    EXPECT_TRUE(pairs[j].joint.isApprox(b.pos[sim::kPelvis]));
+    EXPECT_TRUE(pairs[j].target.isApprox(scene::NearestSamplePoint(seat, pairs[j].joint)));
+    EXPECT_TRUE(pairs[j].direction.isApprox(Eigen::Vector3d(0, 0, 1)));
+  }
+  for (const auto& p : ResolveStep(plan.steps[0], s, b)) EXPECT_EQ(p.type, ContactType::kNone);
 }
 
 TEST(ContactPlanTest, BadPlansNameTheField) {
