@@ -66,20 +66,25 @@ nlohmann::json InstructionToScriptJson(const std::string& sentence) {
     if (skill) break;
     if (w == "sits" || w == "seat" || w == "seated") skill = planner::Skill::kSit;
     if (w == "lies" || w == "lay" || w == "bed") skill = planner::Skill::kLie;
-    if (w == "touch" || w == "touches" || w == "grab" || w == "pick") skill = planner::Skill::kReach;
-    if (w == "walk" || w == "walks" || w == "go" || w == "goes" || w == "move") skill = planner::Skill::kWalk;
+    if (w == "touch" || w == "touches" || w == "grab" || w == "pick")
+      skill = planner::Skill::kReach;
+    if (w == "walk" || w == "walks" || w == "go" || w == "goes" || w == "move")
+      skill = planner::Skill::kWalk;
   }
   if (!skill)
-    ThrowInputError("--instruction", "", "a sentence naming an action (walk, sit, lie, reach/touch, get up)",
+    ThrowInputError("--instruction", "",
+                    "a sentence naming an action (walk, sit, lie, reach/touch, get up)",
                     "'" + sentence + "'");
-  nlohmann::json k = {{"skill", planner::SkillName(*skill)}, {"caption", sentence}, {"furniture", furniture}};
+  nlohmann::json k = {
+      {"skill", planner::SkillName(*skill)}, {"caption", sentence}, {"furniture", furniture}};
   return {{"keyframes", nlohmann::json::array({k})}};
 }
 
 nlohmann::json RunStoryJob(const StoryJob& job) {
   const int inputs = !job.input.empty() + !job.theme.empty() + !job.instruction.empty();
   if (inputs != 1)
-    ThrowInputError("run_story", "input", "exactly one of: a script/plan file, --theme, --instruction",
+    ThrowInputError("run_story", "input",
+                    "exactly one of: a script/plan file, --theme, --instruction",
                     std::to_string(inputs) + " given");
   const std::filesystem::path policy_path =
       job.policies.empty() ? DefaultPolicySetPath() : std::filesystem::path(job.policies);
@@ -91,7 +96,8 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   std::shared_ptr<scene::Scene> story_scene;
   if (!job.input.empty() && IsPlanJson(ReadJsonFile(job.input))) {
     plan = planner::LoadPlan(job.input);
-    story_scene = std::make_shared<scene::Scene>(planner::MaterializeLayout(plan.layout, planner::DefaultSceneLoader()));
+    story_scene = std::make_shared<scene::Scene>(
+        planner::MaterializeLayout(plan.layout, planner::DefaultSceneLoader()));
   } else {
     story_scene = std::make_shared<scene::Scene>(LoadStoryScene(job.scene));
     planner::ScriptResult script;
@@ -101,12 +107,15 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
       const planner::Difficulty d = planner::ParseDifficulty(job.difficulty);
       script = planner.ScriptForTheme(job.theme, d, job.options.seed);
     } else {
-      script.script = planner::LongScriptFromJson(InstructionToScriptJson(job.instruction), "--instruction");
+      script.script =
+          planner::LongScriptFromJson(InstructionToScriptJson(job.instruction), "--instruction");
       script.planner = "instruction";
     }
     plan = planner.Place(script, *story_scene);
   }
-  if (plan.keyframes.empty()) ThrowInputError(job.input.empty() ? "story" : job.input, "keyframes", "at least one keyframe", "none");
+  if (plan.keyframes.empty())
+    ThrowInputError(job.input.empty() ? "story" : job.input, "keyframes", "at least one keyframe",
+                    "none");
 
   // ---- run -------------------------------------------------------------------------------
   StoryRunner runner(story_scene, policies, job.options);
@@ -123,7 +132,8 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   runner.CheckPolicies(instructions);
   const Eigen::Vector3d start = runner.DefaultStart(instructions);
   io::MotionRecordBuilder recorder(runner.humanoid());
-  recorder.SetTitle(plan.theme.empty() ? (job.instruction.empty() ? job.input : job.instruction) : plan.theme);
+  recorder.SetTitle(plan.theme.empty() ? (job.instruction.empty() ? job.input : job.instruction)
+                                       : plan.theme);
   recorder.SetScene({story_scene->name, plan.layout.mode == "given" ? job.scene : ""});
   const StoryResult result = runner.Run(instructions, start, 0.0, &recorder);
   const io::MotionRecord record = recorder.Finish();
@@ -148,19 +158,26 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   std::string story = plan.narrative + "\n\n";
   for (const auto& k : result.keyframes)
     story += "- [" + std::string(k.success ? "ok" : "failed") + "] " + k.skill + ": " + k.caption +
-             (k.object.empty() ? "" : " (" + k.object + ")") + (k.note.empty() ? "" : " — " + k.note) + "\n";
+             (k.object.empty() ? "" : " (" + k.object + ")") +
+             (k.note.empty() ? "" : " — " + k.note) + "\n";
   WriteFileAtomic(partial / "story.txt", story);
   WriteJsonFile(partial / "config.json",
-                {{"input", job.input}, {"theme", job.theme}, {"instruction", job.instruction},
-                 {"difficulty", job.difficulty}, {"scene", job.scene}, {"policies", policy_path.string()},
-                 {"video", job.video}, {"options", ConfigToJson(job.options)},
-                 {"goal", job.goal ? nlohmann::json({job.goal->x(), job.goal->y(), job.goal->z()}) : nlohmann::json()}});
+                {{"input", job.input},
+                 {"theme", job.theme},
+                 {"instruction", job.instruction},
+                 {"difficulty", job.difficulty},
+                 {"scene", job.scene},
+                 {"policies", policy_path.string()},
+                 {"video", job.video},
+                 {"options", ConfigToJson(job.options)},
+                 {"goal", job.goal ? nlohmann::json({job.goal->x(), job.goal->y(), job.goal->z()})
+                                   : nlohmann::json()}});
   WriteJsonFile(partial / "result.json", result_json);  // last: its presence marks completion
   std::filesystem::remove_all(out);
   std::filesystem::rename(partial, out);
   spdlog::info("story: {}/{} keyframes succeeded, {} falls, {:.1f} s simulated; outputs in {}",
-               static_cast<int>(result.success_rate * result.keyframes.size() + 0.5), result.keyframes.size(),
-               result.falls, result.duration_s, out.string());
+               static_cast<int>(result.success_rate * result.keyframes.size() + 0.5),
+               result.keyframes.size(), result.falls, result.duration_s, out.string());
   return result_json;
 }
 

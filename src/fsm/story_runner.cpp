@@ -104,6 +104,7 @@ struct StoryRunner::Impl {
   std::vector<float> action;
   int step = 0;
   io::MotionRecordBuilder* recorder = nullptr;
+  StoryRunner::ActionOverride override_fn;
 
   double Now() const { return step * env->control_dt(); }
 
@@ -126,7 +127,10 @@ struct StoryRunner::Impl {
   }
 
   void StepOnce(const std::string& skill) {
-    policies.at(skill).policy->Act(env->observations(), 1, action.data());
+    if (override_fn)
+      override_fn(skill, env->observations(), action.data());
+    else
+      policies.at(skill).policy->Act(env->observations(), 1, action.data());
     env->Step(action.data());
     ++step;
     if (recorder) recorder->AddFrame(env->pose(0));
@@ -258,6 +262,8 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
 }
 
 StoryRunner::~StoryRunner() = default;
+
+void StoryRunner::SetActionOverride(ActionOverride fn) { impl_->override_fn = std::move(fn); }
 
 const sim::StaticGeometry& StoryRunner::geometry() const { return impl_->geometry; }
 std::shared_ptr<const sim::Humanoid> StoryRunner::humanoid() const {

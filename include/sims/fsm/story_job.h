@@ -16,16 +16,16 @@ namespace sims::fsm {
 
 /// What run_story was asked to do.
 struct StoryJob {
-  std::string input;          ///< Script or plan JSON ("" with theme or instruction).
-  std::string theme;          ///< Plan from a theme.
-  std::string instruction;    ///< LINGO-style single sentence.
+  std::string input;                    ///< Script or plan JSON ("" with theme or instruction).
+  std::string theme;                    ///< Plan from a theme.
+  std::string instruction;              ///< LINGO-style single sentence.
   std::optional<Eigen::Vector3d> goal;  ///< Optional goal location for the instruction.
   std::string difficulty = "mid";       ///< Theme difficulty.
-  std::string scene = "house";  ///< Built-in scene name or scene file.
-  std::string policies;       ///< Policy-set JSON ("" = assets/policies/policies.json).
+  std::string scene = "house";          ///< Built-in scene name or scene file.
+  std::string policies;                 ///< Policy-set JSON ("" = assets/policies/policies.json).
   std::filesystem::path out_dir = "out/story";  ///< Output directory.
-  bool video = false;         ///< Also render DIR/story.mp4.
-  StoryOptions options;       ///< FSM settings (seed included).
+  bool video = false;                           ///< Also render DIR/story.mp4.
+  StoryOptions options;                         ///< FSM settings (seed included).
 };
 
 /// Turns a sentence into a one-interaction long-script JSON (skill and furniture found by the

@@ -6,6 +6,7 @@
 // task hook's goals and the policy (each policy keeps its own normaliser).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -95,6 +96,11 @@ class StoryRunner {
   /// A free floor point to start from: in front of the first instruction's object if any,
   /// else the centre of the scene's free space.
   Eigen::Vector3d DefaultStart(const std::vector<Instruction>& instructions) const;
+  /// Replaces the policies' actions (tests: scripted stand-ins for learned skills).
+  using ActionOverride =
+      std::function<void(const std::string& skill, const float* obs, float* action)>;
+  /// Installs an action override (empty function = use the policies again).
+  void SetActionOverride(ActionOverride fn);
   /// The compiled physics geometry (reused for rendering).
   const sim::StaticGeometry& geometry() const;
   /// The humanoid model of the scene.

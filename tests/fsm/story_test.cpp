@@ -1,0 +1,165 @@
+#include "sims/fsm/story_runner.h"
+
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "common/test_util.h"
+#include "sims/core/error.h"
+#include "sims/fsm/story_job.h"
+#include "sims/learning/train_run.h"
+#include "sims/scene/builtin.h"
+
+namespace sims::fsm {
+namespace {
+
+// A real (barely trained) walk policy written by the training job, shared by the tests.
+const std::filesystem::path& TinyPolicySet() {
+  static const std::filesystem::path set = [] {
+    const auto dir = sims::testing::TempDir("policies");
+    learning::TrainConfig c;
+    c.env.num_envs = 2;
+    c.env.threads = 1;
+    c.skill.skill = "walk";
+    c.learner.amp.enabled = false;
+    c.learner.network.actor_hidden = {16};
+    c.learner.network.critic_hidden = {16};
+    c.learner.network.heightmap_hidden = {8};
+    c.learner.ppo.horizon = 4;
+    c.learner.ppo.mini_epochs = 1;
+    c.iterations = 1;
+    learning::TrainOptions o;
+    o.out_dir = dir / "walk";
+    learning::RunTraining(c, o);
+    std::ofstream(dir / "policies.json") << R"({"policies": {"walk": "walk/policy.pt"}})";
+    return dir / "policies.json";
+  }();
+  return set;
+}
+
+class StoryRunnerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene_ = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
+    StoryOptions o;
+    o.walk_timeout_s = 2.0;
+    o.success_hold_steps = 10;
+    runner_ = std::make_unique<StoryRunner>(scene_, LoadPolicySet(TinyPolicySet()), o);
+    // Scripted stand-in: hold the standing pose (the unit under test is the FSM, not a policy).
+    runner_->SetActionOverride([this](const std::string&, const float*, float* a) {
+      std::fill(a, a + sim::kNumDofs, 0.0f);
+      const double standing[sim::kNumDofs] = {0};
+      if (!collapse_)
+        runner_->humanoid()->TargetsToAction(standing, a);
+      else
+        std::fill(a, a + sim::kNumDofs, -1.0f);
+    });
+  }
+  Instruction WalkTo(const Eigen::Vector3d& p) {
+    Instruction in;
+    in.keyframe = 0;
+    in.skill = "walk";
+    in.caption = "walk";
+    in.target.point = p;
+    in.target.has_point = true;
+    return in;
+  }
+  std::shared_ptr<scene::Scene> scene_;
+  std::unique_ptr<StoryRunner> runner_;
+  bool collapse_ = false;
+};
+
+TEST_F(StoryRunnerTest, SwitchesAfterSuccessHeldForTheHoldTime) {
+  const Eigen::Vector3d start(3, 0, 0);
+  io::MotionRecordBuilder rec(runner_->humanoid());
+  const auto r = runner_->Run({WalkTo(start), WalkTo(start)}, start, 0.0, &rec);
+  ASSERT_EQ(r.keyframes.size(), 2u);
+  EXPECT_TRUE(r.keyframes[0].success);
+  EXPECT_NEAR(r.keyframes[0].end_time, 10.0 / 30.0, 1e-6) << "switch exactly after 10 held steps";
+  EXPECT_TRUE(r.keyframes[1].success);
+  EXPECT_EQ(r.success_steps, 2);
+  EXPECT_EQ(rec.num_frames(), 21);
+}
+
+TEST_F(StoryRunnerTest, TimeOutRecordsAFailureAndTheStoryGoesOn) {
+  const Eigen::Vector3d start(3, 0, 0);
+  const auto r = runner_->Run({WalkTo({3, 4, 0}), WalkTo({3, 4.2, 0})}, start, 0.0, nullptr);
+  ASSERT_EQ(r.keyframes.size(), 2u);
+  EXPECT_FALSE(r.keyframes[0].success);
+  EXPECT_NE(r.keyframes[0].note.find("time-out"), std::string::npos);
+  EXPECT_NEAR(r.keyframes[0].end_time - r.keyframes[0].start_time, 2.0, 1.0 / 30.0 + 1e-9);
+  EXPECT_NEAR(r.keyframes[0].contact_error, 4.0, 0.3);
+  EXPECT_EQ(r.keyframes.size(), 2u) << "the second keyframe still ran";
+  EXPECT_EQ(r.success_steps, 0);
+}
+
+TEST_F(StoryRunnerTest, FallIsDetectedAndRecoveryNeedsAGetUpPolicy) {
+  collapse_ = true;
+  const auto r = runner_->Run({WalkTo({3, 4, 0})}, {3, 0, 0}, 0.0, nullptr);
+  ASSERT_EQ(r.keyframes.size(), 1u);
+  EXPECT_EQ(r.keyframes[0].falls, 1);
+  EXPECT_FALSE(r.keyframes[0].success);
+  EXPECT_NE(r.keyframes[0].note.find("could not get up"), std::string::npos);
+}
+
+TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
+  Instruction sit;
+  sit.skill = "sit";
+  sit.target.object = 0;
+  try {
+    runner_->CheckPolicies({sit});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("policies.sit"), std::string::npos) << e.what();
+  }
+}
+
+TEST(StoryJobTest, InstructionSentenceBecomesAKeyframe) {
+  const auto j = InstructionToScriptJson("sit on the armchair with legs crossed");
+  EXPECT_EQ(j["keyframes"][0]["skill"], "sit");
+  EXPECT_EQ(j["keyframes"][0]["furniture"], "armchair");
+  EXPECT_THROW(InstructionToScriptJson("the weather is nice"), Error);
+}
+
+TEST(StoryJobTest, WritesEveryOutputOrNothing) {
+  const auto dir = sims::testing::TempDir("story");
+  StoryJob job;
+  job.instruction = "walk to the chair";
+  job.scene = "chair";
+  job.policies = TinyPolicySet().string();
+  job.out_dir = dir / "out";
+  job.options.walk_timeout_s = 1.0;
+  const auto result = RunStoryJob(job);
+  for (const char* f : {"result.json", "motion.json", "motion.bvh", "scene.glb", "index.html",
+                        "story.txt", "plan.json", "config.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.partial"));
+  const auto saved = ReadJsonFile(dir / "out" / "result.json");
+  EXPECT_EQ(saved["keyframes"].size(), result["keyframes"].size());
+  EXPECT_EQ(saved["keyframes"][0]["skill"], "walk");
+
+  // Bad inputs: clear error, and no output directory left looking complete.
+  StoryJob bad = job;
+  bad.out_dir = dir / "bad";
+  bad.instruction = "sit on the chair";  // no sit policy in the set
+  EXPECT_THROW(RunStoryJob(bad), Error);
+  std::ofstream(dir / "script.json")
+      << R"({"keyframes": [{"skill": "sit", "furniture": "spaceship"}]})";
+  bad.instruction.clear();
+  bad.input = (dir / "script.json").string();
+  EXPECT_THROW(RunStoryJob(bad), Error);
+  std::ofstream(dir / "missing.json") << R"({"policies": {"walk": "nowhere.pt"}})";
+  bad.input.clear();
+  bad.instruction = "walk to the chair";
+  bad.policies = (dir / "missing.json").string();
+  try {
+    RunStoryJob(bad);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("policies.walk"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad" / "result.json"));
+}
+
+}  // namespace
+}  // namespace sims::fsm
