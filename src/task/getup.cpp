@@ -153,6 +153,21 @@ void GetUpSkill::SetGetUpGoals(int i, const sim::BodyStates& b, double* feet_sq,
   }
 }
 
+bool GetUpSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
+  if (!ObjectSkill::BeginInstruction(view, target)) return false;
+  const int i = view.env_id;
+  sit_hold_[i] = 0;
+  fall_start_[i] = target.object < 0;  // a fall: stand up where the character lies
+  StartGetUp(i, *view.bodies);
+  if (target.has_point) {
+    stand_[i] = target.point.head<2>();
+    double sq = 0, mx = 0;
+    SetGetUpGoals(i, *view.bodies, &sq, &mx);
+  }
+  error_[i] = std::max(kStandingPelvisHeight - view.bodies->pos[sim::kPelvis].z(), 0.0);
+  return true;
+}
+
 void GetUpSkill::StartGetUp(int i, const sim::BodyStates& b) {
   const Eigen::Vector2d pelvis = b.pos[sim::kPelvis].head<2>();
   stand_[i] = pelvis;

@@ -3,6 +3,8 @@
 // different envs concurrently).
 #include "sims/task/object_skill.h"
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 
@@ -191,6 +193,28 @@ void ObjectSkill::CollectObjects(const std::string& what) {
   if (objects_.empty())
     ThrowInputError("scene '" + s.name + "'", "objects", "at least one " + what,
                     std::to_string(s.objects.size()) + " objects, none suitable");
+}
+
+bool ObjectSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
+  const int i = view.env_id;
+  int k = -1;
+  double best = std::numeric_limits<double>::infinity();
+  const Eigen::Vector2d pelvis = view.pose->root_pos.head<2>();
+  for (size_t j = 0; j < objects_.size(); ++j) {
+    if (target.object >= 0) {
+      if (objects_[j].object == target.object) k = static_cast<int>(j);
+      continue;
+    }
+    const double d = (objects_[j].center - pelvis).squaredNorm();
+    if (d < best) best = d, k = static_cast<int>(j);
+  }
+  if (k < 0) return false;
+  object_[i] = k;
+  hold_[i] = 0;
+  Rng rng(0x5EEDull + static_cast<uint64_t>(objects_[k].object));  // same task every time
+  SampleTask(i, rng);
+  OnReset(view, rng);
+  return true;
 }
 
 void ObjectSkill::SetObjectOverride(int env_id, int k) {

@@ -58,6 +58,26 @@ void ReachSkill::SetTarget(int i, int hand_joint, const Eigen::Vector3d& target)
   SetGoal(i, hand_joint, target);
 }
 
+bool ReachSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
+  if (!ObjectSkill::BeginInstruction(view, target)) return false;
+  const int i = view.env_id;
+  const int hand = target.hand >= 0 ? target.hand : hand_[i];
+  if (target.has_point) {
+    SetTarget(i, hand, target.point);
+    return true;
+  }
+  const Bands& bands = candidates_[object_[i]];
+  int band = target.height == "low" ? 0 : target.height == "high" ? 2 : 1;
+  if (bands[band].empty()) band = !bands[1].empty() ? 1 : !bands[0].empty() ? 0 : 2;
+  if (bands[band].empty()) return false;
+  const Eigen::Vector3d pelvis = view.pose->root_pos;
+  const Eigen::Vector3d* best = &bands[band].front();
+  for (const auto& p : bands[band])
+    if ((p - pelvis).head<2>().squaredNorm() < (*best - pelvis).head<2>().squaredNorm()) best = &p;
+  SetTarget(i, hand, *best);
+  return true;
+}
+
 void ReachSkill::SampleTask(int i, Rng& rng) {
   const Bands& bands = candidates_[object_[i]];
   std::vector<int> usable;

@@ -48,6 +48,9 @@ class GetUpSkill : public ObjectSkill {
   std::string name() const override { return sit_first_ ? "sit_getup" : "getup"; }
   void OnReset(const sim::EnvView& view, Rng& rng) override;
   sim::TaskStepResult Step(const sim::EnvView& view) override;
+  /// Gets up from the current state (seat, bed or floor after a fall); target.point, when
+  /// set, is the stand point, else the object's stand point nearest the pelvis.
+  bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
   /// Feet, hands, pelvis and thighs (get-up pushes off with the hands); sit_getup adds the head.
   uint32_t contact_body_mask() const override;
 

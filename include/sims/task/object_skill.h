@@ -85,6 +85,10 @@ class ObjectSkill : public Skill {
   ObjectSkill(const SkillConfig& config, const SkillContext& context);
 
   void SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) override;
+  /// Pursues scene object target.object (or, without one, the accepted object nearest the
+  /// pelvis) from the current state: selects it, draws the task deterministically and sets
+  /// the goals as a reset would, without moving the character.
+  bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
   /// Bodies that may touch furniture: UniHSI's feet, hands, pelvis, thighs and head, plus the
   /// torso (back rests, mattresses).
   uint32_t contact_body_mask() const override;

@@ -29,6 +29,9 @@ class ReachSkill : public ObjectSkill {
   std::string name() const override { return "reach"; }
   void OnReset(const sim::EnvView& view, Rng& rng) override;
   sim::TaskStepResult Step(const sim::EnvView& view) override;
+  /// As ObjectSkill's, then the caption's hand and height band (or target.point) pick the
+  /// target: the candidate of that band nearest the character.
+  bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
 
   /// Env i's target point (world).
   const Eigen::Vector3d& target(int env_id) const { return target_[env_id]; }

@@ -1,0 +1,79 @@
+// Starting skills mid-episode (the FSM path): goals come from the named object without any
+// reset of the character.
+#include <gtest/gtest.h>
+
+#include "sims/scene/builtin.h"
+#include "sims/task/getup.h"
+#include "sims/task/reach.h"
+#include "sims/task/sit.h"
+
+namespace sims::task {
+namespace {
+
+struct Fixture {
+  explicit Fixture(const std::string& skill, const std::string& scene_name) {
+    SkillConfig c;
+    c.skill = skill;
+    setup = CreateSkill(c, 1, 0, std::make_shared<scene::Scene>(scene::BuiltinScene(scene_name)));
+    sim::EnvConfig ec;
+    ec.num_envs = 1;
+    ec.threads = 1;
+    env = std::make_unique<sim::BatchedEnv>(setup.context.humanoid, ec, setup.skill);
+  }
+  sim::EnvView View() {
+    sim::EnvView v;
+    v.humanoid = &env->humanoid();
+    v.data = env->data(0);
+    v.pose = &env->pose(0);
+    v.bodies = &env->bodies(0);
+    return v;
+  }
+  SkillSetup setup;
+  std::unique_ptr<sim::BatchedEnv> env;
+};
+
+TEST(BeginInstructionTest, SitTargetsTheNamedSeat) {
+  Fixture f("sit", "chair");
+  const Eigen::Vector3d before = f.env->pose(0).root_pos;
+  InstructionTarget t;
+  t.object = 0;
+  ASSERT_TRUE(f.setup.skill->BeginInstruction(f.View(), t));
+  EXPECT_TRUE(f.env->pose(0).root_pos.isApprox(before)) << "no reset";
+  EXPECT_TRUE(f.setup.skill->goal_mask(0) & (1u << sim::kCjPelvis));
+  const auto seat = f.setup.context.scene->objects[0].FindPart("seat surface")->mesh.Bounds();
+  const Eigen::Vector3d g = f.setup.skill->goal(0, sim::kCjPelvis);
+  EXPECT_GE(g.z(), seat.max.z() - 0.05);
+  EXPECT_LE((g.head<2>() - seat.center().head<2>()).norm(), seat.size().head<2>().norm());
+  t.object = 99;
+  EXPECT_FALSE(f.setup.skill->BeginInstruction(f.View(), t)) << "not an object of this scene";
+}
+
+TEST(BeginInstructionTest, ReachUsesCaptionHandAndHeight) {
+  Fixture f("reach", "shelf");
+  auto* reach = dynamic_cast<ReachSkill*>(f.setup.skill.get());
+  ASSERT_NE(reach, nullptr);
+  InstructionTarget t;
+  t.object = 0;
+  t.hand = sim::kCjLeftHand;
+  t.height = "high";
+  ASSERT_TRUE(reach->BeginInstruction(f.View(), t));
+  EXPECT_EQ(reach->hand(0), sim::kCjLeftHand);
+  const double high = reach->target(0).z();
+  t.height = "low";
+  ASSERT_TRUE(reach->BeginInstruction(f.View(), t));
+  EXPECT_LT(reach->target(0).z(), high);
+}
+
+TEST(BeginInstructionTest, GetUpStandsAtTheGivenPoint) {
+  Fixture f("getup", "chair");
+  auto* up = dynamic_cast<GetUpSkill*>(f.setup.skill.get());
+  ASSERT_NE(up, nullptr);
+  InstructionTarget t;
+  t.point = {2.5, 1.0, 0};
+  t.has_point = true;
+  ASSERT_TRUE(up->BeginInstruction(f.View(), t)) << "no object: the nearest seat is used";
+  EXPECT_TRUE(up->stand_point(0).isApprox(Eigen::Vector2d(2.5, 1.0)));
+}
+
+}  // namespace
+}  // namespace sims::task
