@@ -8,6 +8,7 @@
 #include "sims/core/config.h"
 #include "sims/core/error.h"
 #include "sims/core/log.h"
+#include "sims/language/motion_clips.h"
 #include "sims/language/motion_text.h"
 #include "sims/language/text_encoder.h"
 
@@ -17,7 +18,10 @@ int main(int argc, char** argv) {
   int steps = 0, threads = -1;
   bool resume = false;
   app.add_option("--config", config_path, "training config (JSON)");
+  std::string manifest;
   app.add_option("--data", data, "folder of clip JSON files (overrides data_dir)");
+  app.add_option("--manifest", manifest,
+                 "motion manifest (e.g. data/motions/synthetic/manifest.json) instead of --data");
   app.add_option("--out", out, "output folder (overrides out_dir)");
   app.add_option("--steps", steps, "optimiser steps (overrides steps)");
   app.add_option("--threads", threads, "threads (0 = all cores; overrides threads)");
@@ -31,10 +35,12 @@ int main(int argc, char** argv) {
     if (!out.empty()) cfg.out_dir = out;
     if (steps > 0) cfg.steps = steps;
     if (threads >= 0) cfg.threads = threads;
-    if (cfg.data_dir.empty())
-      sims::ThrowInputError(config_path, "data_dir", "a folder of clip JSON files (or --data DIR)");
+    if (cfg.data_dir.empty() && manifest.empty())
+      sims::ThrowInputError(config_path, "data_dir",
+                            "a folder of clip JSON files (or --data DIR / --manifest FILE)");
     sims::ValidateConfig(cfg, config_path);
-    const auto clips = sims::language::LoadCaptionedSequences(cfg.data_dir);
+    const auto clips = manifest.empty() ? sims::language::LoadCaptionedSequences(cfg.data_dir)
+                                        : sims::language::SequencesFromManifest(manifest);
     const auto encoder = sims::language::MakeTextEncoder(cfg.text_encoder, config_path);
     const auto losses = sims::language::TrainMotionText(cfg, clips, *encoder, resume);
     std::cout << "final losses: total " << losses.total << ", recon " << losses.recon << ", align "

@@ -5,7 +5,9 @@
 
 #include "sims/core/error.h"
 #include "sims/core/log.h"
+#include "sims/core/paths.h"
 #include "sims/io/story_outputs.h"
+#include "sims/language/embedding_bank.h"
 #include "sims/planner/planner.h"
 #include "sims/scene/builtin.h"
 #include "sims/scene/loaders.h"
@@ -129,6 +131,21 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
       break;
     }
   }
+  // Caption → z through the motion–text model, and what the caption was understood as.
+  nlohmann::json styles = nlohmann::json::array();
+  const std::filesystem::path style_model = job.style_model.empty()
+                                                ? DataPath("language/text_motion")
+                                                : std::filesystem::path(job.style_model);
+  if (std::filesystem::exists(style_model / "bank.json") || !job.style_model.empty()) {
+    const auto embedder = language::StyleEmbedder::Load(style_model);
+    for (auto& in : instructions) {
+      const auto q = embedder.Lookup(in.caption.empty() ? in.skill : in.caption, 3);
+      in.z = q.z;
+      auto j = language::StyleQueryToJson(q);
+      j.erase("z");
+      styles.push_back(j);
+    }
+  }
   runner.CheckPolicies(instructions);
   const Eigen::Vector3d start = runner.DefaultStart(instructions);
   io::MotionRecordBuilder recorder(runner.humanoid());
@@ -150,6 +167,7 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   result_json["scene"] = story_scene->name;
   result_json["seed"] = job.options.seed;
   result_json["policies"] = policy_path.string();
+  result_json["styles"] = styles;
   io::StoryOutputOptions out_opt;
   out_opt.video = job.video;
   out_opt.geometry = &runner.geometry();

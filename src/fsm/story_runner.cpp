@@ -150,6 +150,7 @@ struct StoryRunner::Impl {
   Outcome Attempt(const Instruction& in, double* error, std::string* note) {
     task::Skill* skill = skills.at(in.skill).get();
     task->set_current(skill);
+    skill->SetStyleVector(0, in.z);
     const double timeout = in.skill == "walk" ? options.walk_timeout_s : options.skill_timeout_s;
     std::vector<Eigen::Vector2d> waypoints;
     task::InstructionTarget target = in.target;

@@ -10,6 +10,7 @@
 #include "sims/io/training_report.h"
 #include "sims/learning/motion_demo.h"
 #include "sims/learning/sim_vec_env.h"
+#include "sims/learning/text_styles.h"
 #include "sims/learning/trainer.h"
 
 namespace sims::learning {
@@ -113,6 +114,10 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   if (!options.resume) SaveConfig(config_path, config);
 
   auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
+  if (!config.skill.style_model.empty() && setup.context.motions) {
+    setup.context.styles = TextAlignedStyles(*setup.context.motions, config.skill.style_model);
+    setup.skill->SetStyleTable(setup.context.styles);
+  }
   auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, config.env, setup.skill);
   auto vec = std::make_shared<SimVecEnv>(env);
   std::shared_ptr<const DemoSource> demo;

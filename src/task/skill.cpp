@@ -41,6 +41,7 @@ Skill::Skill(const SkillConfig& config, const SkillContext& context)
   for (auto& g : goals_) g.fill(Eigen::Vector3d::Zero());
   mask_.assign(context_.num_envs, 0);
   style_.assign(context_.num_envs, -1);
+  style_vector_.assign(context_.num_envs, Eigen::VectorXf());
   if (context_.motions)
     for (int c = 0; c < context_.motions->num_clips(); ++c) reference_clips_.push_back(c);
 }
@@ -67,6 +68,11 @@ void Skill::SetGoal(int env_id, int joint, const Eigen::Vector3d& target) {
 void Skill::ClearGoals(int env_id) { mask_[env_id] = 0; }
 
 void Skill::SetStyle(int env_id, int style) { style_[env_id] = style; }
+
+void Skill::SetStyleVector(int env_id, const Eigen::VectorXf& z) {
+  SIMS_CHECK(z.size() == 0 || z.size() == kStyleDim);
+  style_vector_[env_id] = z;
+}
 
 bool Skill::BeginInstruction(const sim::EnvView&, const InstructionTarget&) { return false; }
 
@@ -122,9 +128,14 @@ void Skill::Observe(const sim::EnvView& view, float* out) const {
   }
   heightmap_->SampleOne(b.pos[sim::kPelvis], sim::HeadingAngle(b.rot[sim::kPelvis]), o);
   o += heightmap_->size();
-  const bool has_z = config_.style_conditioned && context_.styles && style_[i] >= 0 &&
-                     style_[i] < context_.styles->size();
-  for (int k = 0; k < kStyleDim; ++k) o[k] = has_z ? context_.styles->z(style_[i])[k] : 0.0f;
+  const Eigen::VectorXf* z = nullptr;
+  if (config_.style_conditioned) {
+    if (style_vector_[i].size() == kStyleDim)
+      z = &style_vector_[i];
+    else if (context_.styles && style_[i] >= 0 && style_[i] < context_.styles->size())
+      z = &context_.styles->z(style_[i]);
+  }
+  for (int k = 0; k < kStyleDim; ++k) o[k] = z ? (*z)[k] : 0.0f;
 }
 
 std::vector<double> Skill::SaveEnvState(int env_id) const {

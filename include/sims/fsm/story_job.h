@@ -25,7 +25,9 @@ struct StoryJob {
   std::string policies;                 ///< Policy-set JSON ("" = assets/policies/policies.json).
   std::filesystem::path out_dir = "out/story";  ///< Output directory.
   bool video = false;                           ///< Also render DIR/story.mp4.
-  StoryOptions options;                         ///< FSM settings (seed included).
+  std::string style_model;  ///< Motion–text model for caption → z ("" = data/language/text_motion
+                            ///< if present).
+  StoryOptions options;  ///< FSM settings (seed included).
 };
 
 /// Turns a sentence into a one-interaction long-script JSON (skill and furniture found by the

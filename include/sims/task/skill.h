@@ -47,10 +47,11 @@ struct MotionDataConfig {
 
 /// Settings shared by all skills (each skill reads the fields it needs).
 struct SkillConfig {
-  std::string skill = "walk";                ///< Registry name.
-  MotionDataConfig motion;                   ///< Demonstrations.
-  scene::HeightmapConfig heightmap;          ///< Egocentric heightmap layout (16×16, 0.1 m).
-  bool style_conditioned = false;            ///< Put the clip's z in the observation.
+  std::string skill = "walk";        ///< Registry name.
+  MotionDataConfig motion;           ///< Demonstrations.
+  scene::HeightmapConfig heightmap;  ///< Egocentric heightmap layout (16×16, 0.1 m).
+  bool style_conditioned = false;    ///< Put the clip's z in the observation.
+  std::string style_model;  ///< Motion–text model dir: text-aligned z per clip ("" = name codes).
   double reference_init_prob = 0.5;          ///< Hybrid init: P(reference state).
   double reference_init_max_fraction = 1.0;  ///< Reference times in [0, f·duration].
   // Walk.
@@ -77,6 +78,7 @@ struct SkillConfig {
     a->Visit(SIMS_NVP(motion));
     a->Visit(SIMS_NVP(heightmap));
     a->Visit(SIMS_NVP(style_conditioned));
+    a->Visit(SIMS_NVP(style_model));
     a->Visit(SIMS_NVP(reference_init_prob));
     a->Visit(SIMS_NVP(reference_init_max_fraction));
     a->Visit(SIMS_NVP(target_speed));
@@ -146,6 +148,12 @@ class Skill : public sim::TaskHook {
   void ClearGoals(int env_id);
   /// Forces the style of env i (FSM: z from a caption); −1 = none.
   void SetStyle(int env_id, int style);
+  /// Gives env i an explicit z (e.g. a caption's embedding); empty = back to style ids.
+  void SetStyleVector(int env_id, const Eigen::VectorXf& z);
+  /// Replaces the style table (text-aligned embeddings from the language module).
+  void SetStyleTable(std::shared_ptr<const StyleTable> styles) {
+    context_.styles = std::move(styles);
+  }
   /// Starts a task mid-episode (the FSM switching skills): sets the goals for `target` from
   /// the character's current state without resetting it. Returns false when the skill cannot
   /// pursue that target (e.g. an object without the part it needs).
@@ -169,6 +177,7 @@ class Skill : public sim::TaskHook {
   std::vector<std::array<Eigen::Vector3d, sim::kNumContactJoints>> goals_;
   std::vector<uint32_t> mask_;
   std::vector<int> style_;
+  std::vector<Eigen::VectorXf> style_vector_;
   std::vector<int> reference_clips_;
 };
 
