@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
       app.add_option("--iterations", iterations, "total iterations")->check(CLI::PositiveNumber);
   auto* seed_opt = app.add_option("--seed", seed, "seed for environments and learner");
   app.add_flag("--resume", opt.resume, "continue from --out/checkpoint.pt");
+  std::string init_from;
+  app.add_option("--init-from", init_from, "warm start from another run's checkpoint.pt");
   app.add_option("--threads", threads, "threads (0 = all hardware threads)");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
   CLI11_PARSE(app, argc, argv);
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
       throw sims::Error("--skill or --config: expected at least one of them");
     if (config_path.empty()) config_path = sims::ConfigPath("skills/" + skill + ".json").string();
     opt.out_dir = out;
+    opt.init_from = init_from;
     if (!skill.empty()) opt.skill = skill;
     if (*it_opt) opt.iterations = iterations;
     if (*seed_opt) opt.seed = seed;

@@ -278,6 +278,7 @@ void StoryRunner::CheckPolicies(const std::vector<Instruction>& instructions) co
     if (in.placed) needed.push_back(in.skill);
   for (const auto& s : needed) {
     if (m.skills.count(s)) continue;
+    if (m.options.missing_policy_fails && s != "walk") continue;
     if (m.skill_errors.count(s))
       ThrowInputError(m.policy_set.File(s).string(), "policies." + s,
                       "a skill that can run in this scene", m.skill_errors.at(s));
@@ -340,8 +341,12 @@ StoryResult StoryRunner::Run(const std::vector<Instruction>& instructions,
     note.caption = in.caption;
     note.emotion = in.emotion;
     note.furniture = in.object_name;
-    if (!in.placed) {
-      out.note = "not placed: " + in.note;
+    if (!in.placed || !m.skills.count(in.skill)) {
+      out.note =
+          !in.placed
+              ? "not placed: " + in.note
+              : "no usable policy for '" + in.skill + "'" +
+                    (m.skill_errors.count(in.skill) ? ": " + m.skill_errors.at(in.skill) : "");
       if (recorder) recorder->AddKeyframe(note);
     } else {
       if (recorder) recorder->BeginKeyframe(note);
@@ -370,7 +375,8 @@ StoryResult StoryRunner::Run(const std::vector<Instruction>& instructions,
       if (recorder) recorder->EndKeyframe(out.success, out.note);
     }
     out.end_time = m.Now();
-    if (in.target.object >= 0 || in.skill == "walk") {
+    const bool attempted = in.placed && m.skills.count(in.skill);
+    if (attempted && (in.target.object >= 0 || in.skill == "walk")) {
       error_sum += out.contact_error;
       ++error_count;
     }

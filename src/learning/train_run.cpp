@@ -134,6 +134,13 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
     TruncateLog(csv_path, trainer.iteration());
     spdlog::info("resumed {} at iteration {}", out.string(), trainer.iteration());
   } else {
+    if (!options.init_from.empty()) {
+      trainer.LoadCheckpoint(options.init_from);
+      WriteJsonFile(out / "init_from.json", {{"checkpoint", options.init_from.string()},
+                                             {"iteration", trainer.iteration()}});
+      spdlog::info("warm start from {} (iteration {})", options.init_from.string(),
+                   trainer.iteration());
+    }
     std::string header;
     for (const auto& c : CsvColumns()) header += (header.empty() ? "" : ",") + c;
     WriteFileAtomic(csv_path, header + "\n");

@@ -30,6 +30,7 @@ struct StoryOptions {
   double fallen_pelvis_height = 0.4;  ///< ... and pelvis below this = fallen (m).
   double waypoint_radius = 0.6;       ///< Switch to the next waypoint within this (m).
   NavigationConfig navigation;        ///< Free-space grid and waypoints.
+  bool missing_policy_fails = false;  ///< Evaluation: keyframes of skills without a policy fail.
   uint64_t seed = 0;                  ///< Start placement and simulator seeds.
   int threads = 1;                    ///< Environment threads.
 
@@ -44,6 +45,7 @@ struct StoryOptions {
     a->Visit(SIMS_NVP(fallen_pelvis_height));
     a->Visit(SIMS_NVP(waypoint_radius));
     a->Visit(SIMS_NVP(navigation));
+    a->Visit(SIMS_NVP(missing_policy_fails));
     a->Visit(SIMS_NVP(seed));
     a->Visit(SIMS_NVP(threads));
   }

@@ -39,6 +39,8 @@ struct TrainOptions {
   std::optional<int> iterations;                 ///< Override TrainConfig::iterations.
   std::optional<uint64_t> seed;                  ///< Override env and learner seeds.
   std::optional<std::string> skill;              ///< Must match the config's skill if set.
+  std::filesystem::path
+      init_from;  ///< Warm start from another run's checkpoint (same network/env).
 };
 
 /// Runs (or resumes) training; returns the final iteration count.

@@ -1,0 +1,50 @@
+// Motion-quality metrics (SIMS §4.3, LINGO §5.1) on recorded motions:
+// - penetration: share of body sample points inside scene geometry, mean and max depth;
+// - foot sliding: mean horizontal foot speed while the foot is on the floor;
+// - FID and APD over per-frame pose features (heading-frame body positions + joint
+//   rotations), against reference clips for FID, within the generated set for APD.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sims/io/motion_record.h"
+#include "sims/scene/voxels.h"
+#include "sims/sim/humanoid.h"
+
+namespace sims::eval {
+
+/// Points on the humanoid's collision geoms in each body's frame (axis and surface samples).
+std::vector<std::vector<Eigen::Vector3d>> BodySamplePoints(const sim::Humanoid& humanoid);
+
+/// Penetration of the recorded bodies into the scene over all frames.
+scene::PenetrationStats MotionPenetration(const io::MotionRecord& record,
+                                          const scene::SceneOccupancy& occupancy,
+                                          const std::vector<std::vector<Eigen::Vector3d>>& samples);
+
+/// Foot sliding: mean horizontal speed (m/s) of a foot between consecutive frames in which it
+/// stays below `contact_height` (foot body origin, ≈ 5 cm above the sole when flat).
+struct FootSliding {
+  double mean_speed = 0;     ///< m/s over contact frame pairs.
+  double sliding_ratio = 0;  ///< Share of contact pairs faster than 0.1 m/s.
+  int contact_pairs = 0;     ///< Frame pairs counted.
+};
+/// Foot sliding of a recorded motion.
+FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_height = 0.08);
+
+/// Per-frame pose feature (114 values): 14 body positions relative to the root in the heading
+/// frame, and the 72-d joint rotation observation.
+Eigen::VectorXd PoseFeature(const io::RecordFrame& frame);
+
+/// Features of every `stride`-th frame of a record as rows.
+Eigen::MatrixXd PoseFeatures(const io::MotionRecord& record, int stride = 1);
+
+/// Fréchet distance between Gaussians fitted to the rows of a and b.
+double FrechetDistance(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+
+/// Average pairwise Euclidean distance between rows (all pairs, or `max_pairs` deterministic
+/// samples when there are more).
+double AveragePairwiseDistance(const Eigen::MatrixXd& rows, int max_pairs = 20000);
+
+}  // namespace sims::eval
