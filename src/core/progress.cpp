@@ -7,10 +7,12 @@
 namespace sims {
 
 ProgressReporter::ProgressReporter(std::string label, int64_t total, std::string unit,
-                                   double interval_s)
+                                   double interval_s, int64_t start)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       total_(total),
+      done_(start),
+      start_done_(start),
       interval_s_(interval_s),
       start_(Clock::now()),
       last_print_(start_) {}

@@ -153,7 +153,8 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
     WriteTrainingReport(csv_path, out / "report.html", "train_policy " + config.skill.skill);
   };
 
-  ProgressReporter progress("train " + config.skill.skill, config.iterations, "it", 10.0);
+  ProgressReporter progress("train " + config.skill.skill, config.iterations, "it", 10.0,
+                            trainer.iteration());
   const int64_t start = trainer.iteration();
   std::ofstream csv(csv_path, std::ios::app);
   int64_t samples_at_start = -1;  // samples/s counts this process only (resume-safe)

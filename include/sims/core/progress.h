@@ -10,9 +10,10 @@ namespace sims {
 /// Prints "<label> 120/1000 (12.0%) 45.1 <unit>/s, ETA 00:19:30 <extra>" lines to the log.
 class ProgressReporter {
  public:
-  /// `total` may be 0 when unknown (no ETA then); `unit` names what is counted.
+  /// `total` may be 0 when unknown (no ETA then); `unit` names what is counted; `start` is
+  /// the count already done before this process (resumed runs), excluded from the rate.
   ProgressReporter(std::string label, int64_t total, std::string unit = "it",
-                   double interval_s = 2.0);
+                   double interval_s = 2.0, int64_t start = 0);
   /// Reports that `done` units are complete; prints if the interval elapsed or on completion.
   void Update(int64_t done, const std::string& extra = {});
   /// Prints the final line (total time and mean rate).
