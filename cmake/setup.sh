@@ -15,7 +15,7 @@ PACKAGES=(
   # fast BLAS for libtorch (the reference BLAS is ~15x slower)
   libopenblas0-openmp
   # headless rendering + video
-  libosmesa6-dev ffmpeg
+  libosmesa6-dev ffmpeg zlib1g-dev
   # offline data: MuJoCo samples, CMU BVH clips, MORSE furniture, WordNet
   libmujoco-samples assimp-testmodels morse-simulator-data wordnet-base
   # TorchScript fixtures for tests, browser tests
