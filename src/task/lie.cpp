@@ -45,25 +45,13 @@ void LieSkill::OnReset(const sim::EnvView& view, Rng&) {
 }
 
 sim::TaskStepResult LieSkill::Step(const sim::EnvView& view) {
-  const int i = view.env_id;
-  const ObjectGeometry& g = geometry(i);
   double d = 0;
-  const double sum = UpdateGoals(i, *view.bodies, &d);
-  error_[i] = d;
-  const Eigen::Vector2d anchor = g.ToWorld(g.mattress_local.center()).head<2>();
-  const double r =
-      ContactReward(anchor, view.pose->root_pos.head<2>(), view.pose->root_lin_vel.head<2>(),
-                    FacingOf(*view.pose), config_.target_speed, sum);
-  return Finish(view, r, d < config_.contact_success_threshold);
+  const double sum = UpdateGoals(view.env_id, *view.bodies, &d);
+  return ContactRewardStep(view, geometry(view.env_id).mattress_local.center(), sum, d);
 }
 
 bool LieSkill::ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) {
-  ClipPlacement placement;
-  const int clip = ChooseFurnitureClip(reference_clips_, geometry(env_id), rng, &placement);
-  if (clip < 0) return false;
-  const double t = context_.motions->SampleTime(clip, rng, config_.reference_init_max_fraction);
-  PlaceReference(env_id, clip, t, placement, init);
-  return true;
+  return FurnitureClipInit(env_id, rng, init);
 }
 
 SkillInfo LieSkillInfo() {

@@ -314,6 +314,27 @@ int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const Object
   return fitting[k];
 }
 
+bool ObjectSkill::FurnitureClipInit(int env_id, Rng& rng, sim::InitialState* init) {
+  ClipPlacement placement;
+  const int clip = ChooseFurnitureClip(reference_clips_, geometry(env_id), rng, &placement);
+  if (clip < 0) return false;
+  const double t = context_.motions->SampleTime(clip, rng, config_.reference_init_max_fraction);
+  PlaceReference(env_id, clip, t, placement, init);
+  return true;
+}
+
+sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view,
+                                                   const Eigen::Vector3d& anchor_local,
+                                                   double goal_sum, double d) {
+  const ObjectGeometry& g = geometry(view.env_id);
+  error_[view.env_id] = d;
+  const Eigen::Vector2d anchor = g.ToWorld(anchor_local).head<2>();
+  const double r =
+      ContactReward(anchor, view.pose->root_pos.head<2>(), view.pose->root_lin_vel.head<2>(),
+                    FacingOf(*view.pose), config_.target_speed, goal_sum);
+  return Finish(view, r, d < config_.contact_success_threshold);
+}
+
 sim::TaskStepResult ObjectSkill::Finish(const sim::EnvView& view, double reward, bool success) {
   const int i = view.env_id;
   sim::TaskStepResult r;

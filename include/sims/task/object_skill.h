@@ -139,6 +139,13 @@ class ObjectSkill : public Skill {
   /// a clip index (−1 if none) and its placement (random lateral offset on wide seats).
   int ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g, Rng& rng,
                           ClipPlacement* placement) const;
+  /// Reference init from `reference_clips_` placed on env i's furniture (sit, lie).
+  bool FurnitureClipInit(int env_id, Rng& rng, sim::InitialState* init);
+  /// Contact reward towards `anchor_local` (object frame) with Σ‖g_j − x_j‖² = goal_sum, and
+  /// success when the measured distance d is within the threshold.
+  sim::TaskStepResult ContactRewardStep(const sim::EnvView& view,
+                                        const Eigen::Vector3d& anchor_local, double goal_sum,
+                                        double d);
   /// Ends a step: success counter, success-held truncation, excessive-force termination.
   sim::TaskStepResult Finish(const sim::EnvView& view, double reward, bool success);
 
