@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
       app.add_option("--iterations", iterations, "total iterations")->check(CLI::PositiveNumber);
   auto* seed_opt = app.add_option("--seed", seed, "seed for environments and learner");
   app.add_flag("--resume", opt.resume, "continue from --out/checkpoint.pt");
-  std::string init_from;
+  std::string init_from, init_policy;
+  app.add_option("--init-policy", init_policy, "initialise actor/critic from a policy.pt (e.g. walk)");
   app.add_option("--init-from", init_from, "warm start from another run's checkpoint.pt");
   app.add_option("--threads", threads, "threads (0 = all hardware threads)");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     if (config_path.empty()) config_path = sims::ConfigPath("skills/" + skill + ".json").string();
     opt.out_dir = out;
     opt.init_from = init_from;
+    opt.init_policy = init_policy;
     if (!skill.empty()) opt.skill = skill;
     if (*it_opt) opt.iterations = iterations;
     if (*seed_opt) opt.seed = seed;

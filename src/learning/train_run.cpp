@@ -134,6 +134,11 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
     TruncateLog(csv_path, trainer.iteration());
     spdlog::info("resumed {} at iteration {}", out.string(), trainer.iteration());
   } else {
+    if (!options.init_policy.empty()) {
+      trainer.InitFromPolicy(options.init_policy);
+      WriteJsonFile(out / "init_policy.json", {{"policy", options.init_policy.string()}});
+      spdlog::info("actor/critic initialised from {}", options.init_policy.string());
+    }
     if (!options.init_from.empty()) {
       trainer.LoadCheckpoint(options.init_from);
       WriteJsonFile(out / "init_from.json", {{"checkpoint", options.init_from.string()},

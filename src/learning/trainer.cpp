@@ -521,6 +521,27 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
   }
 }
 
+void Trainer::InitFromPolicy(const std::filesystem::path& path) {
+  auto& m = *impl_;
+  if (!std::filesystem::exists(path)) ThrowInputError(path.string(), "", "a policy file", "missing");
+  try {
+    torch::serialize::InputArchive archive, ac, on;
+    archive.load_from(path.string());
+    const auto meta = nlohmann::json::parse(TensorString(ReadTensor(archive, "metadata")));
+    if (meta.at("obs_dim").get<int64_t>() != m.obs_dim || meta.at("network") != ConfigToJson(m.cfg.network))
+      ThrowInputError(path.string(), "obs_dim/network", "the same observation width and network sizes",
+                      meta.at("obs_dim").dump() + " / " + meta.at("network").dump());
+    archive.read("actor_critic", ac);
+    m.ac->load(ac);
+    archive.read("obs_norm", on);
+    m.obs_norm->load(on);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    ThrowInputError(path.string(), "", "a policy file written by ExportPolicy", e.what());
+  }
+}
+
 void Trainer::ExportPolicy(const std::filesystem::path& path, const std::string& extra_json) const {
   const auto& m = *impl_;
   torch::serialize::OutputArchive archive, ac, on;

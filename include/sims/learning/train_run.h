@@ -39,8 +39,10 @@ struct TrainOptions {
   std::optional<int> iterations;                 ///< Override TrainConfig::iterations.
   std::optional<uint64_t> seed;                  ///< Override env and learner seeds.
   std::optional<std::string> skill;              ///< Must match the config's skill if set.
-  std::filesystem::path
-      init_from;  ///< Warm start from another run's checkpoint (same network/env).
+  /// Warm start from another run's checkpoint (same network and env).
+  std::filesystem::path init_from;
+  /// Initialise actor, critic and normaliser from a policy file (e.g. walk for other skills).
+  std::filesystem::path init_policy;
 };
 
 /// Runs (or resumes) training; returns the final iteration count.

@@ -59,6 +59,9 @@ class Trainer {
   void SaveCheckpoint(const std::filesystem::path& path) const;
   /// Restores SaveCheckpoint() output; throws sims::Error naming the file on mismatch.
   void LoadCheckpoint(const std::filesystem::path& path);
+  /// Starts from another skill's exported policy: actor, critic and observation normaliser
+  /// (same observation layout and network sizes); the rest keeps its fresh state.
+  void InitFromPolicy(const std::filesystem::path& policy_file);
   /// Writes the small inference file (actor, critic, observation normaliser, layout);
   /// `extra_json` (an object, e.g. the skill and env configs) is stored under "extra".
   void ExportPolicy(const std::filesystem::path& path, const std::string& extra_json = "") const;
