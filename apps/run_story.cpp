@@ -2,6 +2,9 @@
 // motion.bvh, scene.glb + index.html viewer, story.txt, plan.json, config.json (+ story.mp4).
 #include <CLI/CLI.hpp>
 
+#include <optional>
+
+#include "sims/core/config.h"
 #include "sims/core/log.h"
 #include "sims/core/parallel.h"
 #include "sims/fsm/story_job.h"
@@ -9,7 +12,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"Run a story: script.json | plan.json | --theme \"...\" | --instruction \"...\""};
   sims::fsm::StoryJob job;
-  std::string out = job.out_dir.string(), log_level;
+  std::string out = job.out_dir.string(), log_level, options_file;
   std::vector<double> goal;
   int threads = 0;
   app.add_option("input", job.input, "SIMS script or plan JSON");
@@ -19,7 +22,9 @@ int main(int argc, char** argv) {
   app.add_option("--difficulty", job.difficulty, "simple | mid | hard (themes)");
   app.add_option("--scene", job.scene, "built-in scene name or scene file");
   app.add_option("--policies", job.policies, "policy set (default assets/policies/policies.json)");
-  app.add_option("--seed", job.options.seed, "seed");
+  app.add_option("--options", options_file, "FSM options JSON (e.g. configs/story.json)");
+  std::optional<uint64_t> seed;
+  app.add_option("--seed", seed, "seed");
   app.add_option("--out", out, "output directory");
   app.add_flag("--video", job.video, "also render DIR/story.mp4");
   app.add_option("--threads", threads, "threads (0 = all hardware threads)");
@@ -28,6 +33,9 @@ int main(int argc, char** argv) {
   try {
     sims::InitLogging(log_level);
     sims::SetThreadCount(threads);
+    if (!options_file.empty())
+      job.options = sims::LoadConfig<sims::fsm::StoryOptions>(options_file);
+    if (seed) job.options.seed = *seed;
     job.out_dir = out;
     if (!goal.empty()) job.goal = Eigen::Vector3d(goal[0], goal[1], goal[2]);
     sims::fsm::RunStoryJob(job);

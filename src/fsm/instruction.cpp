@@ -4,6 +4,7 @@
 #include <cctype>
 #include <sstream>
 
+#include "sims/fsm/navigation.h"
 #include "sims/scene/contact_targets.h"
 #include "sims/sim/humanoid.h"
 
@@ -83,7 +84,12 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
     in.target.object = obj;
     if (k.skill == "walk") {
       if (obj >= 0) {
-        const auto stands = scene::StandPoints(scene, caster, obj);
+        // A stand point the body fits at with its arms swinging (the navigation's clearance),
+        // else the tightest one the scene offers.
+        scene::StandPointOptions roomy;
+        roomy.clearance_radius = NavigationConfig{}.clearance;
+        auto stands = scene::StandPoints(scene, caster, obj, roomy);
+        if (stands.empty()) stands = scene::StandPoints(scene, caster, obj);
         if (!stands.empty()) {
           in.target.point = stands.front();
           in.target.has_point = true;

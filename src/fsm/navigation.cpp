@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 
 #include "sims/core/error.h"
@@ -164,6 +165,53 @@ std::vector<Eigen::Vector2d> FreeSpaceGrid::Waypoints(const Eigen::Vector2d& sta
       out.push_back(a + (b - a) * (static_cast<double>(p) / pieces));
   }
   return out;
+}
+
+double PathLength(const Eigen::Vector2d& from, const std::vector<Eigen::Vector2d>& waypoints) {
+  double length = 0;
+  Eigen::Vector2d prev = from;
+  for (const auto& w : waypoints) {
+    length += (w - prev).norm();
+    prev = w;
+  }
+  return length;
+}
+
+PathFollower::PathFollower(const Eigen::Vector2d& start, std::vector<Eigen::Vector2d> waypoints)
+    : points_(std::move(waypoints)) {
+  points_.insert(points_.begin(), start);
+}
+
+Eigen::Vector2d PathFollower::Carrot(const Eigen::Vector2d& here, double lookahead) {
+  if (points_.size() == 1) return points_.back();
+  double best = std::numeric_limits<double>::infinity();
+  size_t best_segment = segment_;
+  double best_t = t_;
+  double searched = 0;
+  for (size_t k = segment_; k + 1 < points_.size() && searched < 2 * lookahead; ++k) {
+    const Eigen::Vector2d a = points_[k], ab = points_[k + 1] - points_[k];
+    const double len2 = std::max(ab.squaredNorm(), 1e-12);
+    const double t_min = k == segment_ ? t_ : 0.0;
+    const double t = std::clamp((here - a).dot(ab) / len2, t_min, 1.0);
+    const double d = (a + t * ab - here).norm();
+    if (d < best - 1e-9) best = d, best_segment = k, best_t = t;
+    searched += std::sqrt(len2) * (1.0 - t_min);
+  }
+  segment_ = best_segment;
+  t_ = best_t;
+  double remaining = lookahead;
+  Eigen::Vector2d p = points_[segment_] + t_ * (points_[segment_ + 1] - points_[segment_]);
+  for (size_t k = segment_; k + 1 < points_.size(); ++k) {
+    const double left = (points_[k + 1] - p).norm();
+    if (left >= remaining) return p + remaining * (points_[k + 1] - p) / left;
+    remaining -= left;
+    p = points_[k + 1];
+  }
+  return points_.back();
+}
+
+bool PathFollower::IsEnd(const Eigen::Vector2d& carrot) const {
+  return (carrot - points_.back()).norm() < 1e-9;
 }
 
 }  // namespace sims::fsm

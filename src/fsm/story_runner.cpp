@@ -1,7 +1,11 @@
 #include "sims/fsm/story_runner.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <optional>
+#include <set>
 
 #include "sims/core/error.h"
 #include "sims/core/log.h"
@@ -19,8 +23,10 @@ namespace sims::fsm {
 void StoryOptions::Validate() const {
   Require(success_hold_steps >= 1, "success_hold_steps", "at least 1 step");
   Require(walk_timeout_s > 0 && skill_timeout_s > 0, "skill_timeout_s", "positive time-outs (s)");
+  Require(walk_seconds_per_m >= 0, "walk_seconds_per_m", "a non-negative time per metre (s/m)");
   Require(max_retries >= 0, "max_retries", "a non-negative count");
-  Require(waypoint_radius > 0, "waypoint_radius", "a positive radius (m)");
+  Require(lookahead > 0, "lookahead", "a positive distance (m)");
+  Require(walk_success_hold_steps >= 1, "walk_success_hold_steps", "at least 1 step");
   Require(threads >= 0, "threads", "0 (all) or a positive count");
 }
 
@@ -151,45 +157,66 @@ struct StoryRunner::Impl {
     task::Skill* skill = skills.at(in.skill).get();
     task->set_current(skill);
     skill->SetStyleVector(0, in.z);
-    const double timeout = in.skill == "walk" ? options.walk_timeout_s : options.skill_timeout_s;
+    double timeout = in.skill == "walk" ? options.walk_timeout_s : options.skill_timeout_s;
     std::vector<Eigen::Vector2d> waypoints;
     task::InstructionTarget target = in.target;
     if (in.skill == "walk" && target.has_point) {
       waypoints = free_space->Waypoints(env->pose(0).root_pos.head<2>(), target.point.head<2>());
       if (waypoints.empty()) waypoints = {target.point.head<2>()};  // no path: head straight
+      // A detour around walls takes longer than a walk across the room.
+      timeout += options.walk_seconds_per_m *
+                 std::max(0.0, PathLength(env->pose(0).root_pos.head<2>(), waypoints) - 5.0);
+      std::string wp_text;
+      for (const auto& w : waypoints) wp_text += fmt::format(" ({:.2f}, {:.2f})", w.x(), w.y());
+      spdlog::debug("walk from ({:.2f}, {:.2f}) via{}", env->pose(0).root_pos.x(),
+                    env->pose(0).root_pos.y(), wp_text);
     }
-    size_t wp = 0;
-    auto begin_leg = [&]() {
+    std::optional<PathFollower> follower;
+    if (!waypoints.empty()) follower.emplace(env->pose(0).root_pos.head<2>(), waypoints);
+    // Walks chase a carrot on the path: the walk policy was trained on targets metres away and
+    // circles around ones it is about to pass, so it never gets a corner point as its target.
+    auto aim = [&]() {
       task::InstructionTarget t = target;
-      if (!waypoints.empty()) t.point = {waypoints[wp].x(), waypoints[wp].y(), 0};
-      return skill->BeginInstruction(View(), t);
+      bool last = true;
+      if (follower) {
+        const Eigen::Vector2d c =
+            follower->Carrot(env->pose(0).root_pos.head<2>(), options.lookahead);
+        t.point = {c.x(), c.y(), 0};
+        last = follower->IsEnd(c);
+      }
+      if (!skill->BeginInstruction(View(), t)) return std::optional<bool>();
+      return std::optional<bool>(last);
     };
-    if (!begin_leg()) {
+    std::optional<bool> last_stretch = aim();
+    if (!last_stretch) {
       *note = "the " + in.skill + " skill cannot pursue this target";
       return Outcome::kCannotStart;
     }
+    const int hold_needed =
+        in.skill == "walk" ? options.walk_success_hold_steps : options.success_hold_steps;
     const double start = Now();
     int held = 0;
+    int64_t steps_taken = 0;
     while (Now() - start < timeout) {
       StepOnce(in.skill);
       if (Fallen()) {
         *error = GoalError(in.skill, target);
         return Outcome::kFall;
       }
-      if (!waypoints.empty() && wp + 1 < waypoints.size() &&
-          (env->pose(0).root_pos.head<2>() - waypoints[wp]).norm() < options.waypoint_radius) {
-        ++wp;
-        begin_leg();
-        continue;
-      }
-      const bool final_leg = waypoints.empty() || wp + 1 == waypoints.size();
-      held = final_leg && env->successes()[0] ? held + 1 : 0;
-      if (held >= options.success_hold_steps) {
+      if (spdlog::should_log(spdlog::level::trace) && steps_taken % 30 == 0)
+        spdlog::trace("  t {:.1f} s at ({:.2f}, {:.2f})", Now() - start, env->pose(0).root_pos.x(),
+                      env->pose(0).root_pos.y());
+      ++steps_taken;
+      if (follower) last_stretch = aim();
+      held = *last_stretch && env->successes()[0] ? held + 1 : 0;
+      if (held >= hold_needed) {
         *error = GoalError(in.skill, target);
         return Outcome::kSuccess;
       }
     }
     *error = GoalError(in.skill, target);
+    spdlog::debug("time-out at ({:.2f}, {:.2f})", env->pose(0).root_pos.x(),
+                  env->pose(0).root_pos.y());
     *note = "time-out after " + std::to_string(static_cast<int>(timeout)) + " s";
     return Outcome::kTimeout;
   }
@@ -204,6 +231,23 @@ struct StoryRunner::Impl {
     double err = 0;
     std::string note;
     return Attempt(up, &err, &note) == Outcome::kSuccess;
+  }
+
+  // Without a working get-up the story cannot go on from the floor: the character is put
+  // back on its feet at the nearest free spot, facing the way it was (the result says so).
+  void ResetStanding() {
+    const sim::HumanoidPose& now = env->pose(0);
+    Eigen::Vector2d xy = now.root_pos.head<2>();
+    if (auto f = free_space->NearestFree(xy, 2.0)) xy = *f;
+    const Eigen::Vector3d forward = now.root_rot * Eigen::Vector3d::UnitX();
+    sim::HumanoidPose pose;
+    pose.root_pos = {xy.x(), xy.y(), sim::kDefaultRootHeight};
+    pose.root_rot =
+        Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Eigen::Vector3d::UnitZ());
+    task->set_start(pose);
+    env->Reset();
+    ++step;  // the reset takes one control step, so motion frames stay on the clock
+    if (recorder) recorder->AddFrame(env->pose(0));
   }
 };
 
@@ -227,10 +271,15 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   sim::EnvConfig env_config;
   std::shared_ptr<task::Skill> layout;
   int obs_dim = -1;
+  // Each skill sees the heightmap of the kind of scene it was trained in: walk trains on an
+  // empty floor (obstacles are the navigation's job), so it gets the flat floor's heightmap;
+  // object skills trained among furniture get the story scene's.
+  task::SkillContext flat = m.context;
+  flat.height_grid = std::make_shared<const scene::SceneHeightGrid>(scene::Scene{});
   for (const auto& [skill, file] : policies.policies) {
     LoadedPolicy p = LoadPolicy(skill, file);
     try {
-      auto s = task::FindSkill(skill).create(p.skill_config, m.context);
+      auto s = task::FindSkill(skill).create(p.skill_config, skill == "walk" ? flat : m.context);
       if (obs_dim < 0) {
         obs_dim = sim::kSelfObsDim + s->obs_dim();
         env_config = p.env_config;
@@ -273,12 +322,16 @@ std::shared_ptr<const sim::Humanoid> StoryRunner::humanoid() const {
 
 void StoryRunner::CheckPolicies(const std::vector<Instruction>& instructions) const {
   const auto& m = *impl_;
-  std::vector<std::string> needed = {"walk"};
+  std::set<std::string> needed = {"walk"};
   for (const auto& in : instructions)
-    if (in.placed) needed.push_back(in.skill);
+    if (in.placed) needed.insert(in.skill);
   for (const auto& s : needed) {
     if (m.skills.count(s)) continue;
-    if (m.options.missing_policy_fails && s != "walk") continue;
+    if (m.options.missing_policy_fails && s != "walk") {
+      spdlog::warn("no usable policy for '{}' in {}: its keyframes will be recorded as failed", s,
+                   m.policy_set.source.string());
+      continue;
+    }
     if (m.skill_errors.count(s))
       ThrowInputError(m.policy_set.File(s).string(), "policies." + s,
                       "a skill that can run in this scene", m.skill_errors.at(s));
@@ -288,18 +341,26 @@ void StoryRunner::CheckPolicies(const std::vector<Instruction>& instructions) co
 
 Eigen::Vector3d StoryRunner::DefaultStart(const std::vector<Instruction>& instructions) const {
   const auto& m = *impl_;
+  // Start a few metres from the first object, on free floor with a path to it, so the story
+  // opens with a real walk.
   for (const auto& in : instructions) {
-    if (in.target.object < 0) continue;
-    const auto stands = scene::StandPoints(*m.scene, *m.context.ray_caster, in.target.object);
-    for (const auto& p : stands) {
-      // Start a little away from the first object so the story opens with a walk.
-      const Eigen::Vector2d away =
-          p.head<2>() +
-          1.5 * (p.head<2>() - m.scene->objects[in.target.object].Bounds().center().head<2>())
-                    .normalized();
-      if (m.free_space->Free(away)) return {away.x(), away.y(), 0};
-      if (m.free_space->Free(p.head<2>())) return p;
+    if (in.target.object < 0 && !in.target.has_point) continue;
+    Eigen::Vector2d goal = in.target.point.head<2>();
+    if (in.target.object >= 0) {
+      const auto stands = scene::StandPoints(*m.scene, *m.context.ray_caster, in.target.object);
+      if (stands.empty()) continue;
+      goal = stands.front().head<2>();
     }
+    for (double r : {3.0, 2.5, 3.5, 2.0, 4.0})
+      for (int k = 0; k < 12; ++k) {
+        const double a = k * M_PI / 6;
+        const Eigen::Vector2d p = goal + r * Eigen::Vector2d(std::cos(a), std::sin(a));
+        if (!m.free_space->Free(p)) continue;
+        // A short detour at most: a start behind a wall would open the story with a long walk.
+        const auto path = m.free_space->Waypoints(p, goal);
+        if (!path.empty() && PathLength(p, path) < 1.5 * r) return {p.x(), p.y(), 0};
+      }
+    if (m.free_space->Free(goal)) return {goal.x(), goal.y(), 0};
   }
   const auto c = m.scene->Bounds().center();
   if (auto f = m.free_space->NearestFree(c.head<2>(), 20.0)) return {f->x(), f->y(), 0};
@@ -367,6 +428,10 @@ StoryResult StoryRunner::Run(const std::vector<Instruction>& instructions,
             continue;
           }
           out.note = up ? "fell; retries exhausted" : "fell and could not get up";
+          if (!up && m.options.reset_after_fall) {
+            m.ResetStanding();
+            out.note += "; reset standing";
+          }
           break;
         }
         out.note = why;

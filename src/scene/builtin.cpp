@@ -16,7 +16,7 @@ using Eigen::Vector3d;
 constexpr double kWallHeight = 2.5;
 constexpr double kWallThickness = 0.1;
 constexpr double kRoomSize = 5.0;
-constexpr double kDoorWidth = 1.0;
+constexpr double kDoorWidth = 1.2;  // the room layouts keep the middle 1.2 m of walls free
 
 std::string JoinNames(const std::vector<std::string>& names) {
   std::string s;

@@ -71,5 +71,31 @@ TEST(NavigationTest, UnreachableGoalGivesNoPath) {
   EXPECT_FALSE(grid.FindPath({-1.4, -1.4}, {1.4, 1.4}).empty());
 }
 
+TEST(PathFollowerTest, CarrotLeadsAlongThePathAndStopsAtTheGoal) {
+  // An L-shaped path: east 2 m, then north 2 m.
+  PathFollower f({0, 0}, {{2, 0}, {2, 2}});
+  EXPECT_NEAR(PathLength({0, 0}, {{2, 0}, {2, 2}}), 4.0, 1e-12);
+  Eigen::Vector2d c = f.Carrot({0, 0}, 1.0);
+  EXPECT_TRUE(c.isApprox(Eigen::Vector2d(1, 0))) << c.transpose();
+  // Near the corner the carrot already turns north.
+  c = f.Carrot({1.5, 0.1}, 1.0);
+  EXPECT_TRUE(c.isApprox(Eigen::Vector2d(2, 0.5))) << c.transpose();
+  EXPECT_FALSE(f.IsEnd(c));
+  c = f.Carrot({2.0, 1.5}, 1.0);
+  EXPECT_TRUE(f.IsEnd(c)) << "within the lookahead of the goal the carrot is the goal";
+}
+
+TEST(PathFollowerTest, ProjectionNeverJumpsAcrossAWall) {
+  // A U-turn around a wall: out along y = 0, back along y = 1.
+  PathFollower f({0, 0}, {{5, 0}, {5, 1}, {0, 1}});
+  // At the start, the path's return leg is 1 m away (behind the wall) but far along the path.
+  const Eigen::Vector2d c = f.Carrot({0.2, 0.4}, 1.0);
+  EXPECT_NEAR(c.y(), 0.0, 1e-12) << "stays on the outbound leg";
+  EXPECT_NEAR(c.x(), 1.2, 1e-9);
+  // The projection does not go backwards when the character drifts back.
+  f.Carrot({3.0, 0.0}, 1.0);
+  EXPECT_NEAR(f.Carrot({2.0, 0.0}, 1.0).x(), 4.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace sims::fsm

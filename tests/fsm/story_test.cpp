@@ -44,6 +44,8 @@ class StoryRunnerTest : public ::testing::Test {
     StoryOptions o;
     o.walk_timeout_s = 2.0;
     o.success_hold_steps = 10;
+    o.walk_success_hold_steps = 10;
+    o.missing_policy_fails = false;  // strict: a story needing a missing policy is an error
     runner_ = std::make_unique<StoryRunner>(scene_, LoadPolicySet(TinyPolicySet()), o);
     // Scripted stand-in: hold the standing pose (the unit under test is the FSM, not a policy).
     runner_->SetActionOverride([this](const std::string&, const float*, float* a) {
@@ -102,6 +104,21 @@ TEST_F(StoryRunnerTest, FallIsDetectedAndRecoveryNeedsAGetUpPolicy) {
   EXPECT_NE(r.keyframes[0].note.find("could not get up"), std::string::npos);
 }
 
+TEST_F(StoryRunnerTest, WithoutGetUpTheCharacterIsResetStandingAndTheStoryGoesOn) {
+  collapse_ = true;
+  io::MotionRecordBuilder rec(runner_->humanoid());
+  const auto r = runner_->Run({WalkTo({3, 4, 0}), WalkTo({3, 4.2, 0})}, {3, 0, 0}, 0.0, &rec);
+  ASSERT_EQ(r.keyframes.size(), 2u);
+  EXPECT_NE(r.keyframes[0].note.find("reset standing"), std::string::npos) << r.keyframes[0].note;
+  const auto& frames = rec.record().frames;
+  // The frame after the fall stands at the default height, and every frame stays on the clock.
+  const int first_after = static_cast<int>(std::round(r.keyframes[0].end_time * 30.0));
+  ASSERT_LT(first_after, static_cast<int>(frames.size()));
+  EXPECT_NEAR(frames[first_after].root_pos.z(), sim::kDefaultRootHeight, 1e-6);
+  EXPECT_LT(frames[first_after - 1].root_pos.z(), 0.4) << "it had fallen";
+  for (size_t f = 0; f < frames.size(); ++f) EXPECT_NEAR(frames[f].time, f / 30.0, 1e-9);
+}
+
 TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
   Instruction sit;
   sit.skill = "sit";
@@ -138,10 +155,21 @@ TEST(StoryJobTest, WritesEveryOutputOrNothing) {
   EXPECT_EQ(saved["keyframes"].size(), result["keyframes"].size());
   EXPECT_EQ(saved["keyframes"][0]["skill"], "walk");
 
+  // A skill without a policy: by default its keyframe fails with a note and the story runs.
+  StoryJob lenient = job;
+  lenient.out_dir = dir / "lenient";
+  lenient.instruction = "sit on the chair";  // no sit policy in the set
+  const auto sat = RunStoryJob(lenient);
+  ASSERT_FALSE(sat["keyframes"].empty());
+  EXPECT_EQ(sat["keyframes"].back()["skill"], "sit");
+  EXPECT_FALSE(sat["keyframes"].back()["success"].get<bool>());
+  EXPECT_NE(sat["keyframes"].back()["note"].get<std::string>().find("no usable policy for 'sit'"),
+            std::string::npos);
+
   // Bad inputs: clear error, and no output directory left looking complete.
-  StoryJob bad = job;
+  StoryJob bad = lenient;
   bad.out_dir = dir / "bad";
-  bad.instruction = "sit on the chair";  // no sit policy in the set
+  bad.options.missing_policy_fails = false;  // strict
   EXPECT_THROW(RunStoryJob(bad), Error);
   std::ofstream(dir / "script.json")
       << R"({"keyframes": [{"skill": "sit", "furniture": "spaceship"}]})";

@@ -1,6 +1,6 @@
 // Navigation for long walks: a free-space grid derived from the scene height grid (floor cells
 // farther than a body clearance from anything taller than a rug), A* over it, and the path cut
-// into waypoints the walk policy follows one by one.
+// into waypoints; a walk chases a carrot a little ahead along them (pure pursuit).
 #pragma once
 
 #include <optional>
@@ -17,7 +17,7 @@ namespace sims::fsm {
 /// Free-space grid settings.
 struct NavigationConfig {
   double resolution = 0.1;         ///< Cell size (m).
-  double clearance = 0.3;          ///< Body radius kept free around the path (m).
+  double clearance = 0.4;          ///< Body radius (arms swinging) kept free around the path (m).
   double max_floor_height = 0.05;  ///< Heights up to this are walkable floor (m).
   double margin = 1.0;             ///< Grid extends this far beyond the scene (m).
   double waypoint_spacing = 1.5;   ///< Maximum distance between waypoints (m).
@@ -71,6 +71,28 @@ class FreeSpaceGrid {
   double x0_ = 0, y0_ = 0;
   int nx_ = 0, ny_ = 0;
   std::vector<uint8_t> free_;
+};
+
+/// Length of the polyline from `from` through `waypoints` (m).
+double PathLength(const Eigen::Vector2d& from, const std::vector<Eigen::Vector2d>& waypoints);
+
+/// Pure pursuit along a path: the point `lookahead` metres further along the path than the
+/// character's projection onto it, clamped at the path's end. The projection only moves
+/// forward, and only the next stretch is searched, so a path that bends around a wall is not
+/// short-cut through it.
+class PathFollower {
+ public:
+  /// The path from `start` through `waypoints` (the last one is the goal).
+  PathFollower(const Eigen::Vector2d& start, std::vector<Eigen::Vector2d> waypoints);
+  /// The point to head for from `here` (advances the projection).
+  Eigen::Vector2d Carrot(const Eigen::Vector2d& here, double lookahead);
+  /// True when `carrot` is the path's end (the last stretch).
+  bool IsEnd(const Eigen::Vector2d& carrot) const;
+
+ private:
+  std::vector<Eigen::Vector2d> points_;
+  size_t segment_ = 0;  // segment of the last projection ...
+  double t_ = 0;        // ... and where on it
 };
 
 }  // namespace sims::fsm

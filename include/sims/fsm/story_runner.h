@@ -23,14 +23,17 @@ namespace sims::fsm {
 /// FSM settings.
 struct StoryOptions {
   int success_hold_steps = 20;        ///< Success must hold this long before switching (steps).
-  double walk_timeout_s = 25.0;       ///< Time-out of a walk instruction.
+  double walk_timeout_s = 25.0;       ///< Time-out of a walk instruction, plus ...
+  double walk_seconds_per_m = 2.0;    ///< ... this per metre of planned path beyond 5 m.
   double skill_timeout_s = 10.0;      ///< Time-out of the other skills (SIMS: 10 s per step).
   int max_retries = 1;                ///< Retries of an instruction after a fall.
+  bool reset_after_fall = true;       ///< No get-up: put the character back on its feet.
   double fallen_head_height = 0.4;    ///< Head below this ...
   double fallen_pelvis_height = 0.4;  ///< ... and pelvis below this = fallen (m).
-  double waypoint_radius = 0.6;       ///< Switch to the next waypoint within this (m).
+  double lookahead = 1.0;             ///< Walks chase a path point this far ahead (m).
+  int walk_success_hold_steps = 5;    ///< A walk only needs to arrive, not to stay (steps).
   NavigationConfig navigation;        ///< Free-space grid and waypoints.
-  bool missing_policy_fails = false;  ///< Evaluation: keyframes of skills without a policy fail.
+  bool missing_policy_fails = true;   ///< Keyframes of skills without a policy fail (else: error).
   uint64_t seed = 0;                  ///< Start placement and simulator seeds.
   int threads = 1;                    ///< Environment threads.
 
@@ -39,11 +42,14 @@ struct StoryOptions {
   void Serialize(A* a) {
     a->Visit(SIMS_NVP(success_hold_steps));
     a->Visit(SIMS_NVP(walk_timeout_s));
+    a->Visit(SIMS_NVP(walk_seconds_per_m));
     a->Visit(SIMS_NVP(skill_timeout_s));
     a->Visit(SIMS_NVP(max_retries));
+    a->Visit(SIMS_NVP(reset_after_fall));
     a->Visit(SIMS_NVP(fallen_head_height));
     a->Visit(SIMS_NVP(fallen_pelvis_height));
-    a->Visit(SIMS_NVP(waypoint_radius));
+    a->Visit(SIMS_NVP(lookahead));
+    a->Visit(SIMS_NVP(walk_success_hold_steps));
     a->Visit(SIMS_NVP(navigation));
     a->Visit(SIMS_NVP(missing_policy_fails));
     a->Visit(SIMS_NVP(seed));
