@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/log.h"
 #include "sims/sim/bench.h"
 
@@ -16,10 +17,14 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--repeats", o.repeats, "best-of repeats")->check(CLI::PositiveNumber);
   app.add_option("--max-threads", o.max_threads, "largest thread count (0 = hardware)");
+  sims::AppFlags flags;
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  sims::InitLogging(json ? "warn" : "");
-  const auto result = sims::sim::RunEnvBenchmark(o);
-  if (!json) spdlog::info("env/raw ratio at 1 thread: {:.3f}", result["ratio"].get<double>());
-  std::cout << result.dump(json ? -1 : 2) << std::endl;
-  return 0;
+  if (json) flags.default_log_level = "warn";
+  return sims::RunApp(flags, [&] {
+    const auto result = sims::sim::RunEnvBenchmark(o);
+    if (!json) spdlog::info("env/raw ratio at 1 thread: {:.3f}", result["ratio"].get<double>());
+    std::cout << result.dump(json ? -1 : 2) << std::endl;
+    return 0;
+  });
 }

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/log.h"
 #include "sims/sim/heightmap_bench.h"
 
@@ -20,11 +21,15 @@ int main(int argc, char** argv) {
   app.add_option("--steps", o.control_steps, "control steps per physics run")
       ->check(CLI::PositiveNumber);
   app.add_option("--repeats", o.repeats, "best-of repeats")->check(CLI::PositiveNumber);
+  sims::AppFlags flags;
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  sims::InitLogging(json ? "warn" : "");
-  const auto result = sims::sim::RunHeightmapBenchmark(o);
-  if (!json)
-    spdlog::info("sampler/physics ratio: {:.4f} (target < 0.1)", result["ratio"].get<double>());
-  std::cout << result.dump(json ? -1 : 2) << std::endl;
-  return 0;
+  if (json) flags.default_log_level = "warn";
+  return sims::RunApp(flags, [&] {
+    const auto result = sims::sim::RunHeightmapBenchmark(o);
+    if (!json)
+      spdlog::info("sampler/physics ratio: {:.4f} (target < 0.1)", result["ratio"].get<double>());
+    std::cout << result.dump(json ? -1 : 2) << std::endl;
+    return 0;
+  });
 }

@@ -3,29 +3,25 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sims/core/log.h"
-#include "sims/core/parallel.h"
+#include "sims/core/app.h"
 #include "sims/core/paths.h"
 #include "sims/learning/bench.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Benchmark the learner against sgemm on this machine"};
   std::string config = sims::ConfigPath("skills/walk.json").string();
-  int iterations = 3, threads = 0;
+  int iterations = 3;
   bool json = false;
+  sims::AppFlags flags;
   app.add_option("--config", config, "training config");
   app.add_option("--iterations", iterations, "measured iterations")->check(CLI::PositiveNumber);
-  app.add_option("--threads", threads, "threads (0 = all hardware threads)");
+  sims::AddAppFlags(&app, &flags);
   app.add_flag("--json", json, "print only the JSON result");
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(json ? "warn" : "");
-    sims::SetThreadCount(threads);
+  if (json) flags.default_log_level = "warn";
+  return sims::RunApp(flags, [&] {
     const auto r = sims::learning::RunLearnerBenchmark(config, iterations);
     std::cout << r.dump(json ? -1 : 2) << std::endl;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

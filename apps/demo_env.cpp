@@ -2,37 +2,30 @@
 // pose under random perturbations with a fixed seed; writes DIR/result.json + DIR/config.json.
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/config.h"
-#include "sims/core/log.h"
-#include "sims/core/parallel.h"
 #include "sims/core/paths.h"
 #include "sims/sim/demo.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Run the batched humanoid environment on flat ground and write a result file"};
   std::string config_path = sims::ConfigPath("env.json").string(), out = "out/demo_env";
-  int steps = 300, threads = 0;
+  int steps = 300;
   double noise = 0.1;
   uint64_t seed = 0;
-  std::string log_level;
+  sims::AppFlags flags;
   app.add_option("--config", config_path, "environment config (JSON)");
   app.add_option("--out", out, "output directory");
   app.add_option("--steps", steps, "control steps (30 Hz)")->check(CLI::PositiveNumber);
   app.add_option("--noise", noise, "std of the random action perturbation")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", threads, "threads (0 = all hardware threads)");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
-    sims::SetThreadCount(threads);
+  return sims::RunApp(flags, [&] {
     auto config = sims::LoadConfig<sims::sim::EnvConfig>(config_path);
     config.seed = seed;
     sims::sim::RunStandingDemo(config, steps, noise, out);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

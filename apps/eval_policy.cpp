@@ -4,15 +4,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/config.h"
-#include "sims/core/log.h"
-#include "sims/core/parallel.h"
 #include "sims/eval/policy_eval.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Evaluate a trained skill policy"};
   sims::eval::PolicyEvalOptions o;
-  std::string checkpoint, config, partnet, log_level, out;
+  sims::AppFlags flags;
+  std::string checkpoint, config, partnet, out;
   bool json = false;
   app.add_option("--checkpoint", checkpoint, "policy file written by train_policy (policy.pt)")
       ->required();
@@ -23,14 +23,13 @@ int main(int argc, char** argv) {
   app.add_option("--scene-plan", o.scene_plan, "UniHSI ScenePlan plan.json[#id] (unified)");
   app.add_option("--partnet", partnet, "PartNet folder for --scene-plan");
   app.add_option("--envs", o.num_envs, "parallel environments (0 = min(trials, 16))");
-  app.add_option("--threads", o.threads, "threads (0 = all hardware threads)");
   app.add_flag("--json", json, "print the report as JSON");
   app.add_option("--out", out, "also write the JSON report to this file");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(json && log_level.empty() ? "warn" : log_level);
-    sims::SetThreadCount(o.threads);
+  if (json) flags.default_log_level = "warn";
+  return sims::RunApp(flags, [&] {
+    o.threads = flags.threads;
     o.checkpoint = checkpoint;
     o.config = config;
     o.partnet_root = partnet;
@@ -47,9 +46,6 @@ int main(int argc, char** argv) {
           report.fall_rate, report.contact_error, report.success_steps, report.mean_num_steps,
           report.time_to_success);
     }
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -4,9 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/config.h"
-#include "sims/core/log.h"
-#include "sims/core/parallel.h"
 #include "sims/core/paths.h"
 #include "sims/eval/story_eval.h"
 
@@ -14,8 +13,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Evaluate stories per difficulty (SIMS Table 2 protocol)"};
   sims::eval::StoryEvalOptions o;
   std::string policies, themes,
-      reference = sims::DataPath("motions/synthetic/manifest.json").string(), out, log_level;
-  int threads = 0;
+      reference = sims::DataPath("motions/synthetic/manifest.json").string(), out;
+  sims::AppFlags flags;
   app.add_option("--policies", policies, "policy set (default assets/policies/policies.json)");
   app.add_option("--themes", themes, "theme list (default configs/eval/story_themes.json)");
   app.add_option("--reference", reference, "reference clip manifest for FID ('' = no FID)");
@@ -24,21 +23,15 @@ int main(int argc, char** argv) {
   app.add_option("--difficulties", o.difficulties, "simple mid hard");
   app.add_option("--seed", o.seed, "seed of story 0");
   app.add_option("--out", out, "write the JSON report here too");
-  app.add_option("--threads", threads, "threads (0 = all hardware threads)");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
-    sims::SetThreadCount(threads);
+  return sims::RunApp(flags, [&] {
     o.policies = policies;
     o.themes = themes;
     if (!reference.empty() && std::filesystem::exists(reference)) o.reference_manifest = reference;
     const auto r = sims::eval::EvaluateStories(o);
     if (!out.empty()) sims::WriteJsonFile(out, r);
     std::cout << r.dump(2) << std::endl;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -3,16 +3,18 @@
 // prints one summary line per clip. Malformed input exits non-zero with a clear message.
 #include <CLI/CLI.hpp>
 
-#include "sims/core/log.h"
+#include "sims/core/app.h"
+#include "sims/core/error.h"
 #include "sims/core/paths.h"
 #include "sims/motion/import.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Import BVH motion (retarget onto the humanoid) into clips + manifest.json"};
-  std::string bvh, dataset, root, out, log_level;
+  std::string bvh, dataset, root, out;
   sims::motion::ImportOptions o;
   std::string map = sims::ConfigPath("retarget/cmu.json").string();
   bool keep_going = false;
+  sims::AppFlags flags;
   app.add_option("input", bvh, "BVH file to import");
   app.add_option("--dataset", dataset,
                  "dataset config (configs/datasets/<name>.json) instead of one file");
@@ -29,24 +31,20 @@ int main(int argc, char** argv) {
   app.add_option("--weight", o.weight, "sampling weight in the manifest")
       ->check(CLI::PositiveNumber);
   app.add_flag("--keep-going", keep_going, "dataset mode: skip files that fail and report them");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
+  return sims::RunApp(flags, [&] {
     if (bvh.empty() == dataset.empty())
       throw sims::Error("import_motion: give either a BVH file or --dataset");
     if (!dataset.empty()) {
       int failures = 0;
       for (const auto& s : sims::motion::ImportDataset(dataset, root, out, keep_going, &failures))
         std::printf("%s\n", s.Line().c_str());
-      return failures > 0 ? 2 : 0;
+      return failures > 0 ? 2 : 0;  // 2: some files failed and were skipped (--keep-going)
     }
     o.map = map;
     const auto s = sims::motion::ImportBvhFile(bvh, out.empty() ? "clips" : out, o);
     std::printf("%s\n", s.Line().c_str());
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -5,24 +5,25 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sims/core/log.h"
+#include "sims/core/app.h"
+#include "sims/core/error.h"
 #include "sims/planner/planner.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Index layouts (scene graphs) into a database JSON for plan_story --layouts"};
-  std::string out = "layouts.json", config, future_dir, log_level;
+  std::string out = "layouts.json", config, future_dir;
   std::vector<std::string> front3d;
   bool no_builtin = false, no_morse = false;
+  sims::AppFlags flags;
   app.add_option("--out", out, "database file to write");
   app.add_option("--front3d", front3d, "3D-FRONT folder(s) or house JSON file(s)");
   app.add_option("--future-dir", future_dir, "3D-FUTURE-model folder (default $SIMS_FUTURE_DIR)");
   app.add_flag("--no-builtin", no_builtin, "skip the built-in rooms and house");
   app.add_flag("--no-morse", no_morse, "skip the MORSE apartment");
   app.add_option("--config", config, "planner config (layout.graph settings)");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
+  return sims::RunApp(flags, [&] {
     if (future_dir.empty() && std::getenv("SIMS_FUTURE_DIR"))
       future_dir = std::getenv("SIMS_FUTURE_DIR");
     sims::planner::PlannerConfig cfg = sims::planner::LoadPlannerConfig(config);
@@ -34,9 +35,6 @@ int main(int argc, char** argv) {
     if (db.layouts.empty()) throw sims::Error("index_layouts: nothing was indexed");
     db.Save(out);
     std::cout << "wrote " << db.layouts.size() << " layouts to " << out << "\n";
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

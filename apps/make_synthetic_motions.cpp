@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
 #include "sims/motion/synthetic.h"
@@ -12,8 +13,9 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Generate the synthetic motion clips (walk, idle, sit, lie, reach, getup) + manifest"};
   sims::motion::SyntheticOptions options;
-  std::string out = sims::DataPath("motions/synthetic").string(), log_level;
+  std::string out = sims::DataPath("motions/synthetic").string();
   bool check = false;
+  sims::AppFlags flags;
   app.add_option("--out", out, "output folder (clips + manifest.json)");
   app.add_option("--seed", options.seed, "random seed");
   app.add_option("--variants", options.variants, "random variants per recipe")
@@ -22,10 +24,9 @@ int main(int argc, char** argv) {
   app.add_option("--skills", options.skills,
                  "only these skills (walk, idle, sit, lie, reach, getup)");
   app.add_flag("--check", check, "measure every clip (limits, floor, self-contact, foot sliding)");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
+  return sims::RunApp(flags, [&] {
     const auto start = std::chrono::steady_clock::now();
     const auto clips = sims::motion::GenerateSyntheticClips(options);
     const auto manifest = sims::motion::WriteMotionDataset(
@@ -48,9 +49,6 @@ int main(int argc, char** argv) {
             q.max_limit_excess, q.max_stance_slide);
       }
     }
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -4,13 +4,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sims/core/log.h"
+#include "sims/core/app.h"
 #include "sims/planner/planner.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Plan a story: keyframes bound to furniture of a retrieved layout (plan.json)"};
   sims::planner::PlanRequest r;
-  std::string out = "plan.json", log_level;
+  std::string out = "plan.json";
+  sims::AppFlags flags;
   auto* theme =
       app.add_option("--theme", r.theme, "story theme, e.g. \"happy at first, then sad\"");
   app.add_option("--script", r.script, "short/long script JSON instead of a theme")
@@ -25,16 +26,12 @@ int main(int argc, char** argv) {
   app.add_option("--llm-key", r.llm_key, "API key (default $SIMS_LLM_API_KEY / $OPENAI_API_KEY)");
   app.add_option("--llm-timeout", r.llm_timeout_s, "LLM time-out in seconds");
   app.add_option("--out", out, "plan file to write");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
+  return sims::RunApp(flags, [&] {
     sims::planner::Plan plan = sims::planner::PlanStory(r);
     sims::planner::SavePlan(out, plan);
     std::cout << sims::planner::DescribePlan(plan) << "wrote " << out << "\n";
     return plan.AllPlaced() ? 0 : 3;  // 3: plan written, but some keyframes are unplaced
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
+  });
 }

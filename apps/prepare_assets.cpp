@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
@@ -16,9 +17,10 @@
 int main(int argc, char** argv) {
   CLI::App app{"Convert setup-time data (npm tarballs, WordNet) into data/ formats"};
   sims::language::AssetOptions opt;
-  std::string data_dir = sims::DataPath("").string(), only, log_level;
+  std::string data_dir = sims::DataPath("").string(), only;
   bool list = false;
   std::vector<std::string> vocab;
+  sims::AppFlags flags;
   app.add_option("--data", data_dir, "data folder (holds npm/; outputs go to language/)");
   app.add_option("--only", only, "comma-separated step names (default: all)");
   app.add_flag("--list", list, "list the steps and exit");
@@ -27,10 +29,9 @@ int main(int argc, char** argv) {
   app.add_option("--vocabulary", vocab,
                  "word lists always kept (default configs/language/vocabulary.txt)");
   app.add_option("--wordnet", opt.wordnet_dir, "WordNet dict folder");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
+  return sims::RunApp(flags, [&] {
     opt.data_dir = data_dir;
     opt.vocabulary_files.assign(vocab.begin(), vocab.end());
     std::vector<sims::language::AssetStep> steps = sims::language::LanguageAssetSteps();
@@ -56,9 +57,6 @@ int main(int argc, char** argv) {
     }
     spdlog::info("prepare_assets done in {:.1f} s",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  } catch (const std::exception& e) {
-    std::cerr << "prepare_assets: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -2,6 +2,7 @@
 // character in its scene (MuJoCo offscreen through OSMesa, ffmpeg), optionally a glTF too.
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/log.h"
 #include "sims/io/gltf_export.h"
 #include "sims/io/motion_record.h"
@@ -10,9 +11,10 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"Render a motion record or clip to MP4 (software rendering, no display needed)"};
-  std::string input, scene_spec, out = "story.mp4", gltf, config, log_level;
+  std::string input, scene_spec, out = "story.mp4", gltf, config;
   sims::io::VideoOptions v;
   bool no_captions = false, no_shadows = false;
+  sims::AppFlags flags;
   app.add_option("motion", input, "motion.json (run_story) or a motion clip .json")->required();
   app.add_option("--scene", scene_spec, "scene (built-in name or file); default: the record's");
   app.add_option("--out", out, "MP4 to write");
@@ -25,10 +27,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-captions", no_captions, "no keyframe overlay");
   app.add_flag("--no-shadows", no_shadows, "skip the shadow pass (faster)");
   app.add_option("--gltf", gltf, "also export scene + animated character (.glb or .gltf)");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
+  return sims::RunApp(flags, [&] {
     if (!config.empty()) {
       const sims::io::VideoOptions defaults = v;
       v = sims::LoadConfig<sims::io::VideoOptions>(config, defaults);
@@ -43,8 +44,5 @@ int main(int argc, char** argv) {
     const auto stats = sims::io::RenderVideo(record, scene, out, v);
     spdlog::info("wrote {} ({} frames, {:.1f} frames/s)", out, stats.frames, stats.render_fps);
     return 0;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
+  });
 }

@@ -4,17 +4,16 @@
 
 #include <optional>
 
+#include "sims/core/app.h"
 #include "sims/core/config.h"
-#include "sims/core/log.h"
-#include "sims/core/parallel.h"
 #include "sims/fsm/story_job.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Run a story: script.json | plan.json | --theme \"...\" | --instruction \"...\""};
   sims::fsm::StoryJob job;
-  std::string out = job.out_dir.string(), log_level, options_file;
+  std::string out = job.out_dir.string(), options_file;
   std::vector<double> goal;
-  int threads = 0;
+  sims::AppFlags flags;
   app.add_option("input", job.input, "SIMS script or plan JSON");
   app.add_option("--theme", job.theme, "plan a story for this theme first");
   app.add_option("--instruction", job.instruction, "one sentence, e.g. \"sit on the armchair\"");
@@ -27,21 +26,15 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "seed");
   app.add_option("--out", out, "output directory");
   app.add_flag("--video", job.video, "also render DIR/story.mp4");
-  app.add_option("--threads", threads, "threads (0 = all hardware threads)");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
-    sims::SetThreadCount(threads);
+  return sims::RunApp(flags, [&] {
     if (!options_file.empty())
       job.options = sims::LoadConfig<sims::fsm::StoryOptions>(options_file);
     if (seed) job.options.seed = *seed;
     job.out_dir = out;
     if (!goal.empty()) job.goal = Eigen::Vector3d(goal[0], goal[1], goal[2]);
     sims::fsm::RunStoryJob(job);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -6,26 +6,27 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/error.h"
-#include "sims/core/log.h"
 #include "sims/core/paths.h"
 #include "sims/language/embedding_bank.h"
 #include "sims/language/retrieval_eval.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Caption -> style embedding z, with the nearest training captions and clips"};
-  std::string caption, model_dir = sims::DataPath("language/text_motion").string(), log_level, eval;
+  std::string caption, model_dir = sims::DataPath("language/text_motion").string(), eval;
   int top = 5;
   bool as_json = false;
+  sims::AppFlags flags;
   app.add_option("caption", caption, "the caption to embed");
   app.add_option("--eval", eval, "held-out paraphrase file: print retrieval accuracy instead");
   app.add_option("--model", model_dir, "train_text_motion output folder");
   app.add_option("--top", top, "how many neighbours to list")->check(CLI::PositiveNumber);
   app.add_flag("--json", as_json, "print JSON instead of text");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level.empty() ? "warn" : log_level);
+  flags.default_log_level = "warn";  // model-loading info lines would bury the answer
+  return sims::RunApp(flags, [&] {
     const auto embedder = sims::language::StyleEmbedder::Load(model_dir);
     if (!eval.empty()) {
       const auto r = sims::language::EvaluateRetrieval(embedder, eval);
@@ -49,9 +50,6 @@ int main(int argc, char** argv) {
     else
       std::cout << "text encoder: " << embedder.encoder().Describe() << "\n"
                 << sims::language::FormatStyleQuery(query);
-  } catch (const std::exception& e) {
-    std::cerr << "text_to_style: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

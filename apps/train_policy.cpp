@@ -2,18 +2,19 @@
 // checkpoint in --out with the run's saved config).
 #include <CLI/CLI.hpp>
 
-#include "sims/core/log.h"
-#include "sims/core/parallel.h"
+#include "sims/core/app.h"
+#include "sims/core/error.h"
 #include "sims/core/paths.h"
 #include "sims/learning/train_run.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Train a skill policy with PPO + (conditional) AMP"};
-  std::string skill, config_path, log_level;
+  std::string skill, config_path;
   sims::learning::TrainOptions opt;
   std::string out = "runs/train";
-  int iterations = 0, threads = 0;
+  int iterations = 0;
   uint64_t seed = 0;
+  sims::AppFlags flags;
   app.add_option("--skill", skill, "skill name (walk, sit, lie, reach, getup, unified)");
   app.add_option("--config", config_path, "configs/skills/<skill>.json (default from --skill)");
   app.add_option("--out", out, "output directory (config, log.csv, report.html, checkpoints)");
@@ -22,14 +23,12 @@ int main(int argc, char** argv) {
   auto* seed_opt = app.add_option("--seed", seed, "seed for environments and learner");
   app.add_flag("--resume", opt.resume, "continue from --out/checkpoint.pt");
   std::string init_from, init_policy;
-  app.add_option("--init-policy", init_policy, "initialise actor/critic from a policy.pt (e.g. walk)");
+  app.add_option("--init-policy", init_policy,
+                 "initialise actor/critic from a policy.pt (e.g. walk)");
   app.add_option("--init-from", init_from, "warm start from another run's checkpoint.pt");
-  app.add_option("--threads", threads, "threads (0 = all hardware threads)");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
-    sims::SetThreadCount(threads);
+  return sims::RunApp(flags, [&] {
     if (config_path.empty() && skill.empty())
       throw sims::Error("--skill or --config: expected at least one of them");
     if (config_path.empty()) config_path = sims::ConfigPath("skills/" + skill + ".json").string();
@@ -42,9 +41,6 @@ int main(int argc, char** argv) {
     auto config = opt.resume ? sims::learning::TrainConfig{}
                              : sims::LoadConfig<sims::learning::TrainConfig>(config_path);
     sims::learning::RunTraining(config, opt);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -5,18 +5,19 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/core/app.h"
 #include "sims/core/config.h"
 #include "sims/core/error.h"
-#include "sims/core/log.h"
 #include "sims/language/motion_clips.h"
 #include "sims/language/motion_text.h"
 #include "sims/language/text_encoder.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Train the motion-text auto-encoder (caption -> 64-d style embedding z)"};
-  std::string config_path = "configs/language/text_motion.json", data, out, log_level;
-  int steps = 0, threads = -1;
+  std::string config_path = "configs/language/text_motion.json", data, out;
+  int steps = 0;
   bool resume = false;
+  sims::AppFlags flags;
   app.add_option("--config", config_path, "training config (JSON)");
   std::string manifest;
   app.add_option("--data", data, "folder of clip JSON files (overrides data_dir)");
@@ -24,17 +25,17 @@ int main(int argc, char** argv) {
                  "motion manifest (e.g. data/motions/synthetic/manifest.json) instead of --data");
   app.add_option("--out", out, "output folder (overrides out_dir)");
   app.add_option("--steps", steps, "optimiser steps (overrides steps)");
-  app.add_option("--threads", threads, "threads (0 = all cores; overrides threads)");
+  sims::AddAppFlags(&app, &flags);
+  app.get_option("--threads")->description("threads (0 = all cores; overrides threads)");
   app.add_flag("--resume", resume, "continue from <out>/checkpoint.pt");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
   CLI11_PARSE(app, argc, argv);
-  try {
-    sims::InitLogging(log_level);
+  return sims::RunApp(flags, [&] {
     auto cfg = sims::LoadConfig<sims::language::MotionTextTrainConfig>(config_path);
     if (!data.empty()) cfg.data_dir = data;
     if (!out.empty()) cfg.out_dir = out;
     if (steps > 0) cfg.steps = steps;
-    if (threads >= 0) cfg.threads = threads;
+    // Only an explicit --threads overrides the config; training applies cfg.threads itself.
+    if (app.count("--threads") > 0) cfg.threads = flags.threads;
     if (cfg.data_dir.empty() && manifest.empty())
       sims::ThrowInputError(config_path, "data_dir",
                             "a folder of clip JSON files (or --data DIR / --manifest FILE)");
@@ -47,9 +48,6 @@ int main(int argc, char** argv) {
               << losses.align << ", text " << losses.text_recon << "\n"
               << "outputs in " << cfg.out_dir
               << " (try: text_to_style \"a person walks sadly\" --model " << cfg.out_dir << ")\n";
-  } catch (const std::exception& e) {
-    std::cerr << "train_text_motion: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }
