@@ -185,6 +185,8 @@ struct StoryRunner::Impl {
         last = follower->IsEnd(c);
       }
       if (!skill->BeginInstruction(View(), t)) return std::optional<bool>();
+      // The observation of the last step was assembled for the previous goal (or skill).
+      env->RefreshTaskObservation(0);
       return std::optional<bool>(last);
     };
     std::optional<bool> last_stretch = aim();

@@ -170,6 +170,11 @@ void BatchedEnv::ResetSlot(int i) {
   RefreshObservation(i, !has_history);
 }
 
+void BatchedEnv::RefreshTaskObservation(int env_id) {
+  SIMS_CHECK(env_id >= 0 && env_id < config_.num_envs);
+  RefreshObservation(env_id, false);
+}
+
 void BatchedEnv::RefreshObservation(int i, bool fill_history) {
   Slot& s = *slots_[i];
   const mjData* d = s.data.get();

@@ -31,6 +31,33 @@ std::vector<float> RandomActions(Rng& rng, int n, double scale) {
   return a;
 }
 
+// A task whose goal is one number, observed as is.
+class GoalTask : public TaskHook {
+ public:
+  double goal = 1.0;
+  int obs_dim() const override { return 1; }
+  void SampleInitialState(int, Rng&, InitialState*) override {}
+  void OnReset(const EnvView&, Rng&) override {}
+  TaskStepResult Step(const EnvView&) override { return {}; }
+  void Observe(const EnvView&, float* out) const override { out[0] = static_cast<float>(goal); }
+};
+
+TEST(EnvTest, RefreshTaskObservationShowsANewGoalAtOnce) {
+  auto task = std::make_unique<GoalTask>();
+  GoalTask* goal = task.get();
+  BatchedEnv env(MakeHumanoid(), SmallConfig(2, 1), std::move(task));
+  env.Reset();
+  const int last = env.obs_dim() - 1;
+  EXPECT_EQ(env.observations()[last], 1.0f);
+  const std::vector<float> before(env.observations(), env.observations() + 2 * env.obs_dim());
+  goal->goal = 5.0;
+  env.RefreshTaskObservation(1);
+  EXPECT_EQ(env.observations()[env.obs_dim() + last], 5.0f);
+  EXPECT_EQ(env.observations()[last], 1.0f) << "other envs keep their rows";
+  for (int k = 0; k < last; ++k)
+    EXPECT_EQ(env.observations()[env.obs_dim() + k], before[env.obs_dim() + k]) << k;
+}
+
 TEST(EnvTest, Dimensions) {
   BatchedEnv env(MakeHumanoid(), SmallConfig(3, 1));
   EXPECT_EQ(env.obs_dim(), 223);

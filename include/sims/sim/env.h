@@ -122,6 +122,9 @@ class BatchedEnv {
   const BodyStates& bodies(int env_id) const;
   /// Control steps since the env's last reset.
   int progress(int env_id) const;
+  /// Recomputes one env's observation row after its task's goals changed (a skill switch or a
+  /// new target mid-episode), so the next action sees them.
+  void RefreshTaskObservation(int env_id);
   /// Overwrites an env's state (keeps its episode running) and refreshes its observations.
   void SetState(int env_id, const HumanoidPose& pose);
   /// Serialises every env's simulation, RNG, history and task state (binary string).
