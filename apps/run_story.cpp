@@ -9,7 +9,9 @@
 #include "sims/fsm/story_job.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"Run a story: script.json | plan.json | --theme \"...\" | --instruction \"...\""};
+  CLI::App app{
+      "Run a story: script.json | plan.json | --theme \"...\" | --instruction \"...\" | "
+      "--scene-plan plan.json#id"};
   sims::fsm::StoryJob job;
   std::string out = job.out_dir.string(), options_file;
   std::vector<double> goal;
@@ -18,6 +20,8 @@ int main(int argc, char** argv) {
   app.add_option("--theme", job.theme, "plan a story for this theme first");
   app.add_option("--instruction", job.instruction, "one sentence, e.g. \"sit on the armchair\"");
   app.add_option("--goal", goal, "goal location x y z for --instruction")->expected(3);
+  app.add_option("--scene-plan", job.scene_plan, "UniHSI ScenePlan plan.json[#id] (its own scene)");
+  app.add_option("--partnet", job.partnet_root, "PartNet folder for --scene-plan");
   app.add_option("--difficulty", job.difficulty, "simple | mid | hard (themes)");
   app.add_option("--scene", job.scene, "built-in scene name or scene file");
   app.add_option("--policies", job.policies, "policy set (default assets/policies/policies.json)");

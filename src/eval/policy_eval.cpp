@@ -156,17 +156,11 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       ThrowInputError(o.checkpoint.string(), "extra.skill.skill",
                       "a 'unified' policy to run a ScenePlan (--scene-plan)",
                       "a '" + sc.skill + "' policy");
-    plan_path = o.scene_plan;
-    const auto hash = plan_path.find('#');
-    if (hash != std::string::npos) {
-      plan_id = plan_path.substr(hash + 1);
-      plan_path = plan_path.substr(0, hash);
-    }
-    std::filesystem::path partnet = o.partnet_root;
-    if (partnet.empty()) {
-      const char* env = std::getenv("SIMS_PARTNET_DIR");
-      partnet = env && *env ? std::filesystem::path(env) : DataPath("partnet");
-    }
+    const auto ref = scene::ParseScenePlanRef(o.scene_plan);
+    plan_path = ref.file.string();
+    plan_id = ref.id;
+    const std::filesystem::path partnet =
+        o.partnet_root.empty() ? scene::DefaultPartNetRoot() : o.partnet_root;
     scene = std::make_shared<const scene::Scene>(scene::LoadScenePlan(plan_path, partnet, plan_id));
     plan = task::LoadContactPlan(plan_path, *scene, plan_id);
     if (plan.steps.empty())

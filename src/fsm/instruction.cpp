@@ -116,4 +116,53 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
   return out;
 }
 
+namespace {
+
+// "pelvis on seat_soft_surface (chair000), torso not on back (chair000)".
+std::string ContactStepCaption(const task::ContactStep& step, const scene::Scene& scene) {
+  std::string text;
+  for (const auto& p : step.pairs) {
+    if (p.type == task::ContactType::kNone) continue;
+    std::string what;
+    if (p.target_joint >= 0) {
+      what = sim::ContactJointNames()[p.target_joint];
+    } else if (p.object >= 0 && p.object < static_cast<int>(scene.objects.size())) {
+      const auto& o = scene.objects[p.object];
+      what = (p.part >= 0 && p.part < static_cast<int>(o.parts.size()) ? o.parts[p.part].name
+                                                                       : o.category) +
+             " (" + o.instance + ")";
+    }
+    text += (text.empty() ? "" : ", ") + std::string(sim::ContactJointNames()[p.joint]) +
+            (p.type == task::ContactType::kContact ? " on " : " not on ") + what;
+  }
+  return text.empty() ? "contact step" : text;
+}
+
+}  // namespace
+
+std::vector<Instruction> BuildInstructions(const task::ContactPlan& plan,
+                                           const scene::Scene& scene) {
+  std::vector<Instruction> out;
+  for (size_t k = 0; k < plan.steps.size(); ++k) {
+    const task::ContactStep& step = plan.steps[k];
+    Instruction in;
+    in.keyframe = static_cast<int>(k);
+    in.target.object = step.object;
+    if (step.object >= 0 && step.object < static_cast<int>(scene.objects.size()))
+      in.object_name = scene.objects[step.object].instance;
+    if (step.walking()) {
+      in.skill = "walk";
+      in.caption = "walk to " + in.object_name;
+      in.target.point = {step.stand_point.x(), step.stand_point.y(), 0};
+      in.target.has_point = true;
+    } else {
+      in.skill = "unified";
+      in.caption = ContactStepCaption(step, scene);
+      in.target.contact_step = std::make_shared<const task::ContactStep>(step);
+    }
+    out.push_back(std::move(in));
+  }
+  return out;
+}
+
 }  // namespace sims::fsm

@@ -11,6 +11,7 @@
 #include "sims/planner/planner.h"
 #include "sims/scene/builtin.h"
 #include "sims/scene/loaders.h"
+#include "sims/task/contact_plan.h"
 
 namespace sims::fsm {
 
@@ -83,10 +84,11 @@ nlohmann::json InstructionToScriptJson(const std::string& sentence) {
 }
 
 nlohmann::json RunStoryJob(const StoryJob& job) {
-  const int inputs = !job.input.empty() + !job.theme.empty() + !job.instruction.empty();
+  const int inputs =
+      !job.input.empty() + !job.theme.empty() + !job.instruction.empty() + !job.scene_plan.empty();
   if (inputs != 1)
     ThrowInputError("run_story", "input",
-                    "exactly one of: a script/plan file, --theme, --instruction",
+                    "exactly one of: a script/plan file, --theme, --instruction, --scene-plan",
                     std::to_string(inputs) + " given");
   const std::filesystem::path policy_path =
       job.policies.empty() ? DefaultPolicySetPath() : std::filesystem::path(job.policies);
@@ -96,33 +98,58 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   planner::StoryPlanner planner;
   planner::Plan plan;
   std::shared_ptr<scene::Scene> story_scene;
-  if (!job.input.empty() && IsPlanJson(ReadJsonFile(job.input))) {
-    plan = planner::LoadPlan(job.input);
-    story_scene = std::make_shared<scene::Scene>(
-        planner::MaterializeLayout(plan.layout, planner::DefaultSceneLoader()));
+  std::vector<Instruction> instructions;
+  nlohmann::json plan_json;  // what plan.json holds
+  if (!job.scene_plan.empty()) {
+    // UniHSI: the plan brings its own scene (PartNet objects) and chain of contacts.
+    const auto ref = scene::ParseScenePlanRef(job.scene_plan);
+    const std::filesystem::path partnet = job.partnet_root.empty()
+                                              ? scene::DefaultPartNetRoot()
+                                              : std::filesystem::path(job.partnet_root);
+    story_scene = std::make_shared<scene::Scene>(scene::LoadScenePlan(ref.file, partnet, ref.id));
+    const task::ContactPlan contacts = task::LoadContactPlan(ref.file, *story_scene, ref.id);
+    if (contacts.steps.empty())
+      ThrowInputError(ref.file.string(), contacts.id, "a plan with at least one step", "none");
+    instructions = BuildInstructions(contacts, *story_scene);
+    plan.planner = "sceneplan";
+    plan.theme = "UniHSI plan " + contacts.id;
+    plan.layout.mode = "given";
+    plan.narrative = "Chain of contacts " + contacts.id + " of " + ref.file.filename().string() +
+                     " (" + std::to_string(contacts.steps.size()) + " steps).";
+    plan_json = {{"scene_plan", ref.file.string()},
+                 {"id", contacts.id},
+                 {"plan", ReadJsonFile(ref.file)[contacts.id]}};
   } else {
-    story_scene = std::make_shared<scene::Scene>(LoadStoryScene(job.scene));
-    planner::ScriptResult script;
-    if (!job.input.empty()) {
-      script = planner.ScriptFromFile(job.input);
-    } else if (!job.theme.empty()) {
-      const planner::Difficulty d = planner::ParseDifficulty(job.difficulty);
-      script = planner.ScriptForTheme(job.theme, d, job.options.seed);
+    if (!job.input.empty() && IsPlanJson(ReadJsonFile(job.input))) {
+      plan = planner::LoadPlan(job.input);
+      story_scene = std::make_shared<scene::Scene>(
+          planner::MaterializeLayout(plan.layout, planner::DefaultSceneLoader()));
     } else {
-      script.script =
-          planner::LongScriptFromJson(InstructionToScriptJson(job.instruction), "--instruction");
-      script.planner = "instruction";
+      story_scene = std::make_shared<scene::Scene>(LoadStoryScene(job.scene));
+      planner::ScriptResult script;
+      if (!job.input.empty()) {
+        script = planner.ScriptFromFile(job.input);
+      } else if (!job.theme.empty()) {
+        const planner::Difficulty d = planner::ParseDifficulty(job.difficulty);
+        script = planner.ScriptForTheme(job.theme, d, job.options.seed);
+      } else {
+        script.script =
+            planner::LongScriptFromJson(InstructionToScriptJson(job.instruction), "--instruction");
+        script.planner = "instruction";
+      }
+      plan = planner.Place(script, *story_scene);
     }
-    plan = planner.Place(script, *story_scene);
+    if (plan.keyframes.empty())
+      ThrowInputError(job.input.empty() ? "story" : job.input, "keyframes", "at least one keyframe",
+                      "none");
+    ValidateConfig(plan, "plan");
+    plan_json = planner::PlanToJson(plan);
+    const scene::RayCaster caster(*story_scene);
+    instructions = BuildInstructions(plan, *story_scene, caster);
   }
-  if (plan.keyframes.empty())
-    ThrowInputError(job.input.empty() ? "story" : job.input, "keyframes", "at least one keyframe",
-                    "none");
 
   // ---- run -------------------------------------------------------------------------------
   StoryRunner runner(story_scene, policies, job.options);
-  const scene::RayCaster caster(*story_scene);
-  auto instructions = BuildInstructions(plan, *story_scene, caster);
   if (job.goal) {
     // LINGO's optional goal location: the interaction (or final walk) aims at it.
     for (auto it = instructions.rbegin(); it != instructions.rend(); ++it) {
@@ -172,7 +199,7 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   out_opt.video = job.video;
   out_opt.geometry = &runner.geometry();
   io::WriteStoryOutputs(partial, record, *story_scene, out_opt);
-  planner::SavePlan(partial / "plan.json", plan);
+  WriteJsonFile(partial / "plan.json", plan_json);
   std::string story = plan.narrative + "\n\n";
   for (const auto& k : result.keyframes)
     story += "- [" + std::string(k.success ? "ok" : "failed") + "] " + k.skill + ": " + k.caption +
@@ -182,6 +209,7 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   WriteJsonFile(partial / "config.json",
                 {{"input", job.input},
                  {"theme", job.theme},
+                 {"scene_plan", job.scene_plan},
                  {"instruction", job.instruction},
                  {"difficulty", job.difficulty},
                  {"scene", job.scene},

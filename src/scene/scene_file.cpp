@@ -23,15 +23,20 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
+ScenePlanRef ParseScenePlanRef(const std::string& ref) {
+  if (const auto hash = ref.rfind('#'); hash != std::string::npos && !std::filesystem::exists(ref))
+    return {ref.substr(0, hash), ref.substr(hash + 1)};
+  return {ref, ""};
+}
+
+std::filesystem::path DefaultPartNetRoot() {
+  return EnvOr("SIMS_PARTNET_DIR", DataPath("partnet"));
+}
+
 Scene LoadSceneFile(const std::string& spec) {
   namespace fs = std::filesystem;
   if (spec.rfind("builtin:", 0) == 0) return BuiltinScene(spec.substr(8));
-  std::string path_part = spec, fragment;
-  if (const auto hash = spec.rfind('#'); hash != std::string::npos && !fs::exists(spec)) {
-    path_part = spec.substr(0, hash);
-    fragment = spec.substr(hash + 1);
-  }
-  const fs::path path(path_part);
+  const auto [path, fragment] = ParseScenePlanRef(spec);
   if (!fs::exists(path)) {
     // Not a file: a built-in name, or a clear error listing both options.
     if (path.extension().empty() && path.parent_path().empty()) return BuiltinScene(spec);
@@ -56,7 +61,7 @@ Scene LoadSceneFile(const std::string& spec) {
       return LoadFront3D(path, future);
     }
     if (j.is_object() && !j.empty() && j.begin()->is_object() && j.begin()->contains("obj"))
-      return LoadScenePlan(path, EnvOr("SIMS_PARTNET_DIR", DataPath("partnet")), fragment);
+      return LoadScenePlan(path, DefaultPartNetRoot(), fragment);
     ThrowInputError(path.string(), "",
                     "a 3D-FRONT house (furniture, mesh, scene) or a UniHSI ScenePlan "
                     "({plan_id: {obj: ...}})",

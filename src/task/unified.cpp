@@ -205,6 +205,23 @@ double StepContactError(const ContactStep& st,
 }
 }  // namespace
 
+bool UnifiedSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
+  if (!target.contact_step) return ObjectSkill::BeginInstruction(view, target);
+  const ContactStep& step = *target.contact_step;
+  const int i = view.env_id;
+  int k = -1;
+  for (int j = 0; j < static_cast<int>(objects_.size()); ++j)
+    if (objects_[j].object == step.object) k = j;
+  if (k < 0) return false;
+  object_[i] = k;
+  hold_[i] = 0;
+  steps_[i] = {step};
+  step_[i] = still_[i] = completed_[i] = 0;
+  Rng unused(0);
+  OnReset(view, unused);
+  return true;
+}
+
 void UnifiedSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
   const auto pairs = Pairs(steps_[i][step_[i]], *view.bodies);

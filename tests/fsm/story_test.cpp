@@ -9,6 +9,7 @@
 #include "sims/fsm/story_job.h"
 #include "sims/learning/train_run.h"
 #include "sims/scene/builtin.h"
+#include "sims/scene/loaders.h"
 
 namespace sims::fsm {
 namespace {
@@ -129,6 +130,42 @@ TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("policies.sit"), std::string::npos) << e.what();
   }
+}
+
+TEST(InstructionTest, ScenePlanStepsBecomeWalkAndUnifiedInstructions) {
+  const auto json = sims::testing::TestData("scene/sceneplan.json");
+  const auto scene = scene::LoadScenePlan(json, sims::testing::TestData("scene/partnet"), "0000");
+  const auto plan = task::LoadContactPlan(json, scene, "0000");
+  const auto in = BuildInstructions(plan, scene);
+  ASSERT_EQ(in.size(), 2u);
+  EXPECT_EQ(in[0].skill, "walk");
+  EXPECT_TRUE(in[0].target.has_point);
+  EXPECT_TRUE(in[0].target.point.isApprox(Eigen::Vector3d(2.5, 2, 0)));
+  EXPECT_EQ(in[0].object_name, "chair000");
+  EXPECT_EQ(in[1].skill, "unified");
+  ASSERT_TRUE(in[1].target.contact_step);
+  EXPECT_EQ(in[1].target.contact_step->mask(), 1u << sim::kCjPelvis);
+  EXPECT_NE(in[1].caption.find("pelvis on"), std::string::npos) << in[1].caption;
+}
+
+TEST(StoryJobTest, RunsAUniHsiScenePlan) {
+  const auto dir = sims::testing::TempDir("story_sceneplan");
+  StoryJob job;
+  job.scene_plan = sims::testing::TestData("scene/sceneplan.json").string() + "#0000";
+  job.partnet_root = sims::testing::TestData("scene/partnet").string();
+  job.policies = TinyPolicySet().string();  // walk only: the contact step has no policy
+  job.out_dir = dir / "out";
+  job.options.walk_timeout_s = 1.0;
+  const auto r = RunStoryJob(job);
+  ASSERT_EQ(r["keyframes"].size(), 2u);
+  EXPECT_EQ(r["keyframes"][0]["skill"], "walk");
+  EXPECT_EQ(r["keyframes"][1]["skill"], "unified");
+  EXPECT_NE(r["keyframes"][1]["note"].get<std::string>().find("no usable policy for 'unified'"),
+            std::string::npos);
+  EXPECT_EQ(r["planner"], "sceneplan");
+  const auto plan = ReadJsonFile(dir / "out" / "plan.json");
+  EXPECT_EQ(plan["id"], "0000");
+  EXPECT_TRUE(plan["plan"].contains("contact_pairs"));
 }
 
 TEST(StoryJobTest, InstructionSentenceBecomesAKeyframe) {

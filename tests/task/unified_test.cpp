@@ -306,6 +306,40 @@ TEST(UnifiedSkillTest, StepsAdvanceWithinTheEpisode) {
   EXPECT_NEAR(u->contact_error(0), 0.2, 0.03);  // nearest seat sample under the pelvis
 }
 
+TEST(UnifiedSkillTest, BeginInstructionRunsOneContactStep) {
+  const auto json = sims::testing::TestData("scene/sceneplan.json");
+  auto scene = std::make_shared<const scene::Scene>(
+      scene::LoadScenePlan(json, sims::testing::TestData("scene/partnet"), "0000"));
+  SkillConfig c;
+  c.skill = "unified";
+  auto setup = CreateSkill(c, 1, 4, scene);
+  auto* u = dynamic_cast<UnifiedSkill*>(setup.skill.get());
+  sim::EnvConfig ec;
+  ec.num_envs = 1;
+  ec.threads = 1;
+  sim::BatchedEnv env(setup.context.humanoid, ec, setup.skill);
+  env.Reset();
+  const auto plan = LoadContactPlan(json, *scene, "0000");
+  ASSERT_EQ(plan.steps.size(), 2u);
+  InstructionTarget t;
+  t.contact_step = std::make_shared<const ContactStep>(plan.steps[1]);  // pelvis on the seat
+  ASSERT_TRUE(u->BeginInstruction(ViewOf(env, 0), t));
+  ASSERT_EQ(u->steps(0).size(), 1u);
+  EXPECT_EQ(u->step_index(0), 0);
+  EXPECT_FALSE(u->steps(0)[0].walking());
+  // The pelvis goal is on the seat (not the walking step's stand point), the hands have none.
+  const Eigen::Vector3d seat = u->goal(0, sim::kCjPelvis);
+  EXPECT_FALSE(seat.isApprox(plan.steps[0].stand_point));
+  EXPECT_GT(seat.z(), 0.2);
+  EXPECT_TRUE(u->goal_mask(0) & (1u << sim::kCjPelvis));
+  EXPECT_FALSE(u->goal_mask(0) & (1u << sim::kCjLeftHand));
+  InstructionTarget missing = t;
+  auto other = plan.steps[1];
+  other.object = 7;  // not in the scene
+  missing.contact_step = std::make_shared<const ContactStep>(other);
+  EXPECT_FALSE(u->BeginInstruction(ViewOf(env, 0), missing));
+}
+
 TEST(UnifiedSkillTest, RunsAScenePlanAndRestoresSnapshots) {
   const auto json = sims::testing::TestData("scene/sceneplan.json");
   auto scene = std::make_shared<const scene::Scene>(

@@ -12,6 +12,7 @@
 #include "sims/planner/plan.h"
 #include "sims/scene/ray_caster.h"
 #include "sims/scene/scene.h"
+#include "sims/task/contact_plan.h"
 #include "sims/task/skill.h"
 
 namespace sims::fsm {
@@ -44,5 +45,11 @@ int FindObjectIndex(const scene::Scene& scene, const std::string& instance);
 /// the free floor of the keyframe's room), reach height and hand from the caption.
 std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scene::Scene& scene,
                                            const scene::RayCaster& caster);
+
+/// Turns a UniHSI chain of contacts into instructions: a walking step becomes a walk to its
+/// stand point (A* and the walk policy), a contact step runs the unified skill with the step's
+/// contact pairs (goal + mask) on its object.
+std::vector<Instruction> BuildInstructions(const task::ContactPlan& plan,
+                                           const scene::Scene& scene);
 
 }  // namespace sims::fsm

@@ -19,6 +19,9 @@ struct StoryJob {
   std::string input;                    ///< Script or plan JSON ("" with theme or instruction).
   std::string theme;                    ///< Plan from a theme.
   std::string instruction;              ///< LINGO-style single sentence.
+  std::string scene_plan;               ///< UniHSI ScenePlan "plan.json[#id]" (scene + chain).
+  std::string partnet_root;             ///< PartNet folder for it ("" = $SIMS_PARTNET_DIR,
+                                        ///< data/partnet).
   std::optional<Eigen::Vector3d> goal;  ///< Optional goal location for the instruction.
   std::string difficulty = "mid";       ///< Theme difficulty.
   std::string scene = "house";          ///< Built-in scene name or scene file.

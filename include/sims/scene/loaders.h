@@ -135,6 +135,18 @@ std::vector<std::string> ScenePlanIds(const std::filesystem::path& json_path);
 Scene LoadScenePlan(const std::filesystem::path& json_path,
                     const std::filesystem::path& partnet_root, const std::string& plan_id = "");
 
+/// A ScenePlan reference: "plan.json#<id>" (no "#": the first plan).
+struct ScenePlanRef {
+  std::filesystem::path file;  ///< The ScenePlan JSON.
+  std::string id;              ///< Plan id ("" = the first).
+};
+
+/// Splits "plan.json#<id>" (a file whose name really contains '#' is taken whole).
+ScenePlanRef ParseScenePlanRef(const std::string& ref);
+
+/// PartNet folder for ScenePlans: $SIMS_PARTNET_DIR, else data/partnet.
+std::filesystem::path DefaultPartNetRoot();
+
 /// Loads by extension and content: a built-in scene name (BuiltinSceneNames, optionally
 /// "builtin:<name>"), a PartNet folder, a ScanNet folder or .ply with annotations, a 3D-FRONT
 /// house .json (models in ../3D-FUTURE-model or $SIMS_FUTURE_DIR), a ScenePlan .json

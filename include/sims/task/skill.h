@@ -111,6 +111,8 @@ struct SkillContext {
   int num_envs = 1;                                           ///< Per-env state size.
 };
 
+struct ContactStep;
+
 /// What a story instruction asks of a skill in the scene the env simulates (FSM).
 struct InstructionTarget {
   int object = -1;                                  ///< Scene object index (−1 = none).
@@ -118,6 +120,7 @@ struct InstructionTarget {
   bool has_point = false;                           ///< `point` is set.
   int hand = -1;                                    ///< Reach: kCjLeftHand / kCjRightHand.
   std::string height;                               ///< Reach: "low", "medium" or "high".
+  std::shared_ptr<const ContactStep> contact_step;  ///< Unified: one chain-of-contacts step.
 };
 
 /// Base class of all skills (see the file comment).

@@ -42,6 +42,9 @@ class UnifiedSkill : public ObjectSkill {
   void Observe(const sim::EnvView& view, float* out) const override;
   void OnReset(const sim::EnvView& view, Rng& rng) override;
   sim::TaskStepResult Step(const sim::EnvView& view) override;
+  /// With target.contact_step: runs that one step on its object (the FSM's UniHSI plans);
+  /// otherwise a chain on the target object as ObjectSkill does.
+  bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
 
   /// Runs `steps` in every following episode (empty = random chains again).
   void SetPlan(const std::vector<ContactStep>& steps);
