@@ -10,6 +10,7 @@
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/progress.h"
+#include "sims/core/rng.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/contact_targets.h"
 #include "sims/sim/env.h"
@@ -344,7 +345,9 @@ void StoryRunner::CheckPolicies(const std::vector<Instruction>& instructions) co
 Eigen::Vector3d StoryRunner::DefaultStart(const std::vector<Instruction>& instructions) const {
   const auto& m = *impl_;
   // Start a few metres from the first object, on free floor with a path to it, so the story
-  // opens with a real walk.
+  // opens with a real walk. Seed 0 tries the directions from +x; other seeds turn the first
+  // direction tried, so repeated runs of one script start from different sides.
+  const double phase = m.options.seed == 0 ? 0.0 : Rng(m.options.seed).Uniform(0.0, 2 * M_PI);
   for (const auto& in : instructions) {
     if (in.target.object < 0 && !in.target.has_point) continue;
     Eigen::Vector2d goal = in.target.point.head<2>();
@@ -355,7 +358,7 @@ Eigen::Vector3d StoryRunner::DefaultStart(const std::vector<Instruction>& instru
     }
     for (double r : {3.0, 2.5, 3.5, 2.0, 4.0})
       for (int k = 0; k < 12; ++k) {
-        const double a = k * M_PI / 6;
+        const double a = phase + k * M_PI / 6;
         const Eigen::Vector2d p = goal + r * Eigen::Vector2d(std::cos(a), std::sin(a));
         if (!m.free_space->Free(p)) continue;
         // A short detour at most: a start behind a wall would open the story with a long walk.

@@ -120,6 +120,43 @@ TEST_F(StoryRunnerTest, WithoutGetUpTheCharacterIsResetStandingAndTheStoryGoesOn
   for (size_t f = 0; f < frames.size(); ++f) EXPECT_NEAR(frames[f].time, f / 30.0, 1e-9);
 }
 
+TEST(StoryStartTest, StartIsAShortWalkFromTheFirstGoalAndTheSeedTurnsIt) {
+  auto room = std::make_shared<scene::Scene>(scene::BuiltinScene("empty"));
+  // A 6 m × 6 m walled floor: the empty scene plus four thin walls.
+  for (const auto& [lo, hi] :
+       std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>{{{-3, -3.1, 0}, {3, -3, 2}},
+                                                                {{-3, 3, 0}, {3, 3.1, 2}},
+                                                                {{-3.1, -3, 0}, {-3, 3, 2}},
+                                                                {{3, -3, 0}, {3.1, 3, 2}}}) {
+    scene::Object wall;
+    wall.category = "wall";
+    wall.instance = "wall" + std::to_string(room->objects.size());
+    scene::Part p;
+    p.name = "wall";
+    p.mesh = scene::TriangleMesh::Box(lo, hi);
+    wall.parts.push_back(p);
+    room->objects.push_back(wall);
+  }
+  Instruction walk;
+  walk.skill = "walk";
+  walk.target.point = {0.5, 0, 0};
+  walk.target.has_point = true;
+  StoryRunner canonical_runner(room, LoadPolicySet(TinyPolicySet()), StoryOptions{});
+  const Eigen::Vector3d canonical = canonical_runner.DefaultStart({walk});
+  const double d0 = (canonical.head<2>() - Eigen::Vector2d(0.5, 0)).norm();
+  EXPECT_GE(d0, 2.0 - 1e-9);
+  EXPECT_LE(d0, 4.0 + 1e-9);
+  EXPECT_TRUE(canonical.isApprox(canonical_runner.DefaultStart({walk}))) << "deterministic";
+  StoryOptions o;
+  o.seed = 5;
+  StoryRunner seeded(room, LoadPolicySet(TinyPolicySet()), o);
+  const Eigen::Vector3d turned = seeded.DefaultStart({walk});
+  const double d1 = (turned.head<2>() - Eigen::Vector2d(0.5, 0)).norm();
+  EXPECT_GE(d1, 2.0 - 1e-9);
+  EXPECT_LE(d1, 4.0 + 1e-9);
+  EXPECT_GT((turned - canonical).norm(), 0.1) << "another seed starts elsewhere";
+}
+
 TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
   Instruction sit;
   sit.skill = "sit";

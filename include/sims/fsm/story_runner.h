@@ -34,7 +34,7 @@ struct StoryOptions {
   int walk_success_hold_steps = 5;    ///< A walk only needs to arrive, not to stay (steps).
   NavigationConfig navigation;        ///< Free-space grid and waypoints.
   bool missing_policy_fails = true;   ///< Keyframes of skills without a policy fail (else: error).
-  uint64_t seed = 0;                  ///< Start placement and simulator seeds.
+  uint64_t seed = 0;                  ///< Env seed and start placement (0: canonical start).
   int threads = 1;                    ///< Environment threads.
 
   /// Lists the fields for JSON binding.
@@ -101,8 +101,8 @@ class StoryRunner {
   /// keyframe annotations to `recorder` when given.
   StoryResult Run(const std::vector<Instruction>& instructions, const Eigen::Vector3d& start,
                   double start_heading, io::MotionRecordBuilder* recorder);
-  /// A free floor point to start from: in front of the first instruction's object if any,
-  /// else the centre of the scene's free space.
+  /// A free floor point 2–4 m from the first instruction's goal with a short path to it (the
+  /// direction depends on the seed), else the centre of the scene's free space.
   Eigen::Vector3d DefaultStart(const std::vector<Instruction>& instructions) const;
   /// Replaces the policies' actions (tests: scripted stand-ins for learned skills).
   using ActionOverride =
