@@ -38,6 +38,32 @@ const std::filesystem::path& TinyPolicySet() {
   return set;
 }
 
+// The tiny walk policy plus an equally tiny get-up policy, so the FSM's recovery path runs.
+const std::filesystem::path& TinyPolicySetWithGetUp() {
+  static const std::filesystem::path set = [] {
+    const auto dir = TinyPolicySet().parent_path();
+    learning::TrainConfig c;
+    c.env.num_envs = 2;
+    c.env.threads = 1;
+    c.skill.skill = "getup";
+    c.skill.motion.manifest.clear();  // no clips: default-pose and fall-state starts only
+    c.learner.amp.enabled = false;
+    c.learner.network.actor_hidden = {16};
+    c.learner.network.critic_hidden = {16};
+    c.learner.network.heightmap_hidden = {8};
+    c.learner.ppo.horizon = 4;
+    c.learner.ppo.mini_epochs = 1;
+    c.iterations = 1;
+    learning::TrainOptions o;
+    o.out_dir = dir / "getup";
+    learning::RunTraining(c, o);
+    std::ofstream(dir / "policies_getup.json")
+        << R"({"policies": {"walk": "walk/policy.pt", "getup": "getup/policy.pt"}})";
+    return dir / "policies_getup.json";
+  }();
+  return set;
+}
+
 class StoryRunnerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -155,6 +181,37 @@ TEST(StoryStartTest, StartIsAShortWalkFromTheFirstGoalAndTheSeedTurnsIt) {
   EXPECT_GE(d1, 2.0 - 1e-9);
   EXPECT_LE(d1, 4.0 + 1e-9);
   EXPECT_GT((turned - canonical).norm(), 0.1) << "another seed starts elsewhere";
+}
+
+TEST(StoryRecoveryTest, AFallHandsOverToTheGetUpPolicyBeforeTheStoryGoesOn) {
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
+  StoryOptions o;
+  o.walk_timeout_s = 2.0;
+  o.skill_timeout_s = 1.0;
+  StoryRunner runner(scene, LoadPolicySet(TinyPolicySetWithGetUp()), o);
+  // Scripted stand-ins: the walk collapses, the get-up holds the standing targets (which
+  // cannot lift a lying body, so the recovery times out).
+  std::vector<std::string> skills_seen;
+  runner.SetActionOverride([&](const std::string& skill, const float*, float* a) {
+    if (skills_seen.empty() || skills_seen.back() != skill) skills_seen.push_back(skill);
+    const double standing[sim::kNumDofs] = {0};
+    if (skill == "walk")
+      std::fill(a, a + sim::kNumDofs, -1.0f);
+    else
+      runner.humanoid()->TargetsToAction(standing, a);
+  });
+  Instruction walk;
+  walk.skill = "walk";
+  walk.target.point = {3, 4, 0};
+  walk.target.has_point = true;
+  const auto r = runner.Run({walk}, {3, 0, 0}, 0.0, nullptr);
+  ASSERT_EQ(r.keyframes.size(), 1u);
+  EXPECT_EQ(r.keyframes[0].falls, 1);
+  EXPECT_EQ(skills_seen, (std::vector<std::string>{"walk", "getup"}));
+  EXPECT_NE(r.keyframes[0].note.find("could not get up"), std::string::npos);
+  // One walk attempt until the fall, then at most the get-up's time-out.
+  EXPECT_LE(r.keyframes[0].end_time, 2.0 + 1.0 + 2.0 / 30.0);
+  EXPECT_GT(r.keyframes[0].end_time, 1.0) << "the get-up ran for its time-out";
 }
 
 TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
