@@ -9,7 +9,6 @@
 #include "sims/io/story_outputs.h"
 #include "sims/language/embedding_bank.h"
 #include "sims/planner/planner.h"
-#include "sims/scene/builtin.h"
 #include "sims/scene/loaders.h"
 #include "sims/task/contact_plan.h"
 
@@ -29,18 +28,6 @@ std::vector<std::string> LowerWords(const std::string& text) {
     }
   }
   return out;
-}
-
-scene::Scene LoadStoryScene(const std::string& name) {
-  const auto names = scene::BuiltinSceneNames();
-  if (std::find(names.begin(), names.end(), name) != names.end()) return scene::BuiltinScene(name);
-  if (!std::filesystem::exists(name)) {
-    std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    ThrowInputError("--scene", "scene", "a built-in scene (" + list + ") or an existing scene file",
-                    "'" + name + "'");
-  }
-  return scene::LoadSceneFile(name);
 }
 
 bool IsPlanJson(const nlohmann::json& j) {
@@ -125,7 +112,7 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
       story_scene = std::make_shared<scene::Scene>(
           planner::MaterializeLayout(plan.layout, planner::DefaultSceneLoader()));
     } else {
-      story_scene = std::make_shared<scene::Scene>(LoadStoryScene(job.scene));
+      story_scene = std::make_shared<scene::Scene>(scene::LoadSceneFile(job.scene));
       planner::ScriptResult script;
       if (!job.input.empty()) {
         script = planner.ScriptFromFile(job.input);

@@ -121,17 +121,7 @@ struct StoryRunner::Impl {
            b.pos[sim::kPelvis].z() < options.fallen_pelvis_height;
   }
 
-  sim::EnvView View() const {
-    sim::EnvView v;
-    v.env_id = 0;
-    v.humanoid = &env->humanoid();
-    v.data = const_cast<sim::BatchedEnv&>(*env).data(0);
-    v.pose = &env->pose(0);
-    v.bodies = &env->bodies(0);
-    v.progress = env->progress(0);
-    v.control_dt = env->control_dt();
-    return v;
-  }
+  sim::EnvView View() const { return env->View(0); }
 
   void StepOnce(const std::string& skill) {
     if (override_fn)
@@ -176,22 +166,21 @@ struct StoryRunner::Impl {
     if (!waypoints.empty()) follower.emplace(env->pose(0).root_pos.head<2>(), waypoints);
     // Walks chase a carrot on the path: the walk policy was trained on targets metres away and
     // circles around ones it is about to pass, so it never gets a corner point as its target.
+    bool last_stretch = true;  // success counts only once the carrot is the goal itself
     auto aim = [&]() {
       task::InstructionTarget t = target;
-      bool last = true;
       if (follower) {
         const Eigen::Vector2d c =
             follower->Carrot(env->pose(0).root_pos.head<2>(), options.lookahead);
         t.point = {c.x(), c.y(), 0};
-        last = follower->IsEnd(c);
+        last_stretch = follower->IsEnd(c);
       }
-      if (!skill->BeginInstruction(View(), t)) return std::optional<bool>();
+      const bool ok = skill->BeginInstruction(View(), t);
       // The observation of the last step was assembled for the previous goal (or skill).
       env->RefreshTaskObservation(0);
-      return std::optional<bool>(last);
+      return ok;
     };
-    std::optional<bool> last_stretch = aim();
-    if (!last_stretch) {
+    if (!aim()) {
       *note = "the " + in.skill + " skill cannot pursue this target";
       return Outcome::kCannotStart;
     }
@@ -199,19 +188,14 @@ struct StoryRunner::Impl {
         in.skill == "walk" ? options.walk_success_hold_steps : options.success_hold_steps;
     const double start = Now();
     int held = 0;
-    int64_t steps_taken = 0;
     while (Now() - start < timeout) {
       StepOnce(in.skill);
       if (Fallen()) {
         *error = GoalError(in.skill, target);
         return Outcome::kFall;
       }
-      if (spdlog::should_log(spdlog::level::trace) && steps_taken % 30 == 0)
-        spdlog::trace("  t {:.1f} s at ({:.2f}, {:.2f})", Now() - start, env->pose(0).root_pos.x(),
-                      env->pose(0).root_pos.y());
-      ++steps_taken;
-      if (follower) last_stretch = aim();
-      held = *last_stretch && env->successes()[0] ? held + 1 : 0;
+      if (follower) aim();
+      held = last_stretch && env->successes()[0] ? held + 1 : 0;
       if (held >= hold_needed) {
         *error = GoalError(in.skill, target);
         return Outcome::kSuccess;

@@ -137,7 +137,8 @@ Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> 
   torch::manual_seed(config.seed);
   m.rng = Rng(config.seed);
   m.ac = ActorCritic(m.segments, m.act_dim, config.network);
-  if (const auto mean = m.env->initial_action_mean(); !mean.empty()) m.ac->SetInitialActionMean(mean);
+  if (const auto mean = m.env->initial_action_mean(); !mean.empty())
+    m.ac->SetInitialActionMean(mean);
   m.obs_norm = RunningMeanStd(m.obs_dim, config.ppo.obs_clip);
   m.value_norm = RunningMeanStd(1, 1e9);
   std::vector<torch::Tensor> params = m.ac->parameters();
@@ -523,13 +524,16 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
 
 void Trainer::InitFromPolicy(const std::filesystem::path& path) {
   auto& m = *impl_;
-  if (!std::filesystem::exists(path)) ThrowInputError(path.string(), "", "a policy file", "missing");
+  if (!std::filesystem::exists(path))
+    ThrowInputError(path.string(), "", "a policy file", "missing");
   try {
     torch::serialize::InputArchive archive, ac, on;
     archive.load_from(path.string());
     const auto meta = nlohmann::json::parse(TensorString(ReadTensor(archive, "metadata")));
-    if (meta.at("obs_dim").get<int64_t>() != m.obs_dim || meta.at("network") != ConfigToJson(m.cfg.network))
-      ThrowInputError(path.string(), "obs_dim/network", "the same observation width and network sizes",
+    if (meta.at("obs_dim").get<int64_t>() != m.obs_dim ||
+        meta.at("network") != ConfigToJson(m.cfg.network))
+      ThrowInputError(path.string(), "obs_dim/network",
+                      "the same observation width and network sizes",
                       meta.at("obs_dim").dump() + " / " + meta.at("network").dump());
     archive.read("actor_critic", ac);
     m.ac->load(ac);

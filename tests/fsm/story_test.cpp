@@ -14,24 +14,30 @@
 namespace sims::fsm {
 namespace {
 
+// Trains `skill` for one tiny iteration into dir/<skill>/policy.pt: a real policy file the
+// FSM loads, whose actions the tests replace with scripted ones where it matters.
+void TrainTinyPolicy(const std::string& skill, const std::filesystem::path& dir) {
+  learning::TrainConfig c;
+  c.env.num_envs = 2;
+  c.env.threads = 1;
+  c.skill.skill = skill;
+  c.learner.amp.enabled = false;
+  c.learner.network.actor_hidden = {16};
+  c.learner.network.critic_hidden = {16};
+  c.learner.network.heightmap_hidden = {8};
+  c.learner.ppo.horizon = 4;
+  c.learner.ppo.mini_epochs = 1;
+  c.iterations = 1;
+  learning::TrainOptions o;
+  o.out_dir = dir / skill;
+  learning::RunTraining(c, o);
+}
+
 // A real (barely trained) walk policy written by the training job, shared by the tests.
 const std::filesystem::path& TinyPolicySet() {
   static const std::filesystem::path set = [] {
     const auto dir = sims::testing::TempDir("policies");
-    learning::TrainConfig c;
-    c.env.num_envs = 2;
-    c.env.threads = 1;
-    c.skill.skill = "walk";
-    c.learner.amp.enabled = false;
-    c.learner.network.actor_hidden = {16};
-    c.learner.network.critic_hidden = {16};
-    c.learner.network.heightmap_hidden = {8};
-    c.learner.ppo.horizon = 4;
-    c.learner.ppo.mini_epochs = 1;
-    c.iterations = 1;
-    learning::TrainOptions o;
-    o.out_dir = dir / "walk";
-    learning::RunTraining(c, o);
+    TrainTinyPolicy("walk", dir);
     std::ofstream(dir / "policies.json") << R"({"policies": {"walk": "walk/policy.pt"}})";
     return dir / "policies.json";
   }();
@@ -42,21 +48,7 @@ const std::filesystem::path& TinyPolicySet() {
 const std::filesystem::path& TinyPolicySetWithGetUp() {
   static const std::filesystem::path set = [] {
     const auto dir = TinyPolicySet().parent_path();
-    learning::TrainConfig c;
-    c.env.num_envs = 2;
-    c.env.threads = 1;
-    c.skill.skill = "getup";
-    c.skill.motion.manifest.clear();  // no clips: default-pose and fall-state starts only
-    c.learner.amp.enabled = false;
-    c.learner.network.actor_hidden = {16};
-    c.learner.network.critic_hidden = {16};
-    c.learner.network.heightmap_hidden = {8};
-    c.learner.ppo.horizon = 4;
-    c.learner.ppo.mini_epochs = 1;
-    c.iterations = 1;
-    learning::TrainOptions o;
-    o.out_dir = dir / "getup";
-    learning::RunTraining(c, o);
+    TrainTinyPolicy("getup", dir);
     std::ofstream(dir / "policies_getup.json")
         << R"({"policies": {"walk": "walk/policy.pt", "getup": "getup/policy.pt"}})";
     return dir / "policies_getup.json";
@@ -147,22 +139,12 @@ TEST_F(StoryRunnerTest, WithoutGetUpTheCharacterIsResetStandingAndTheStoryGoesOn
 }
 
 TEST(StoryStartTest, StartIsAShortWalkFromTheFirstGoalAndTheSeedTurnsIt) {
+  // A 6 m × 6 m walled floor.
   auto room = std::make_shared<scene::Scene>(scene::BuiltinScene("empty"));
-  // A 6 m × 6 m walled floor: the empty scene plus four thin walls.
-  for (const auto& [lo, hi] :
-       std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>{{{-3, -3.1, 0}, {3, -3, 2}},
-                                                                {{-3, 3, 0}, {3, 3.1, 2}},
-                                                                {{-3.1, -3, 0}, {-3, 3, 2}},
-                                                                {{3, -3, 0}, {3.1, 3, 2}}}) {
-    scene::Object wall;
-    wall.category = "wall";
-    wall.instance = "wall" + std::to_string(room->objects.size());
-    scene::Part p;
-    p.name = "wall";
-    p.mesh = scene::TriangleMesh::Box(lo, hi);
-    wall.parts.push_back(p);
-    room->objects.push_back(wall);
-  }
+  room->walls = scene::TriangleMesh::Box({-3, -3.1, 0}, {3, -3, 2});
+  room->walls.Append(scene::TriangleMesh::Box({-3, 3, 0}, {3, 3.1, 2}));
+  room->walls.Append(scene::TriangleMesh::Box({-3.1, -3, 0}, {-3, 3, 2}));
+  room->walls.Append(scene::TriangleMesh::Box({3, -3, 0}, {3.1, 3, 2}));
   Instruction walk;
   walk.skill = "walk";
   walk.target.point = {0.5, 0, 0};

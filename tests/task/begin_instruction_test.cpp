@@ -20,14 +20,7 @@ struct Fixture {
     ec.threads = 1;
     env = std::make_unique<sim::BatchedEnv>(setup.context.humanoid, ec, setup.skill);
   }
-  sim::EnvView View() {
-    sim::EnvView v;
-    v.humanoid = &env->humanoid();
-    v.data = env->data(0);
-    v.pose = &env->pose(0);
-    v.bodies = &env->bodies(0);
-    return v;
-  }
+  sim::EnvView View() { return env->View(0); }
   SkillSetup setup;
   std::unique_ptr<sim::BatchedEnv> env;
 };

@@ -29,17 +29,7 @@ inline std::string SyntheticManifest(const std::vector<std::string>& skills) {
 }
 
 /// The view a task hook gets for env i.
-inline sim::EnvView ViewOf(sim::BatchedEnv& env, int i) {
-  sim::EnvView v;
-  v.env_id = i;
-  v.humanoid = &env.humanoid();
-  v.data = env.data(i);
-  v.pose = &env.pose(i);
-  v.bodies = &env.bodies(i);
-  v.progress = env.progress(i);
-  v.control_dt = env.control_dt();
-  return v;
-}
+inline sim::EnvView ViewOf(sim::BatchedEnv& env, int i) { return env.View(i); }
 
 /// A skill and its environment.
 struct SkillEnv {

@@ -135,6 +135,8 @@ class BatchedEnv {
   TaskHook* task() const { return task_.get(); }
   /// The resolved config.
   const EnvConfig& config() const { return config_; }
+  /// What a task hook sees of env i (its state after the last step or reset).
+  EnvView View(int i) const;
 
  private:
   struct Slot;
@@ -143,7 +145,6 @@ class BatchedEnv {
   void RefreshObservation(int i, bool fill_history);
   bool Unstable(int i) const;
   bool Fallen(int i) const;
-  EnvView View(int i) const;
 
   std::shared_ptr<const Humanoid> humanoid_;
   EnvConfig config_;
