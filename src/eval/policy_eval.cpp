@@ -7,6 +7,7 @@
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
+#include "sims/learning/text_styles.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/loaders.h"
@@ -150,27 +151,20 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
 
   std::shared_ptr<const scene::Scene> scene;
   task::ContactPlan plan;
-  std::string plan_path, plan_id;
   if (!o.scene_plan.empty()) {
     if (sc.skill != "unified")
       ThrowInputError(o.checkpoint.string(), "extra.skill.skill",
                       "a 'unified' policy to run a ScenePlan (--scene-plan)",
                       "a '" + sc.skill + "' policy");
-    const auto ref = scene::ParseScenePlanRef(o.scene_plan);
-    plan_path = ref.file.string();
-    plan_id = ref.id;
-    const std::filesystem::path partnet =
-        o.partnet_root.empty() ? scene::DefaultPartNetRoot() : o.partnet_root;
-    scene = std::make_shared<const scene::Scene>(scene::LoadScenePlan(plan_path, partnet, plan_id));
-    plan = task::LoadContactPlan(plan_path, *scene, plan_id);
-    if (plan.steps.empty())
-      ThrowInputError(plan_path, plan.id, "a plan with at least one chain-of-contacts step",
-                      "no steps");
+    auto loaded = task::LoadScenePlanRef(o.scene_plan, o.partnet_root);
+    scene = loaded.scene;
+    plan = std::move(loaded.plan);
     // UniHSI: a plan of n steps must finish within n × 10 s.
     ec.episode_length = static_cast<int>(plan.steps.size()) * 300;
   }
 
   task::SkillSetup setup = task::CreateSkill(sc, n_env, o.seed, scene);
+  learning::ApplyStyleModel(sc, &setup);
   if (scene) dynamic_cast<task::UnifiedSkill&>(*setup.skill).SetPlan(plan.steps);
   auto hook = std::make_shared<RecordingHook>(setup.skill, n_env);
   sim::BatchedEnv env(setup.context.humanoid, ec, hook);

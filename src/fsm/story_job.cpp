@@ -89,23 +89,18 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   nlohmann::json plan_json;  // what plan.json holds
   if (!job.scene_plan.empty()) {
     // UniHSI: the plan brings its own scene (PartNet objects) and chain of contacts.
-    const auto ref = scene::ParseScenePlanRef(job.scene_plan);
-    const std::filesystem::path partnet = job.partnet_root.empty()
-                                              ? scene::DefaultPartNetRoot()
-                                              : std::filesystem::path(job.partnet_root);
-    story_scene = std::make_shared<scene::Scene>(scene::LoadScenePlan(ref.file, partnet, ref.id));
-    const task::ContactPlan contacts = task::LoadContactPlan(ref.file, *story_scene, ref.id);
-    if (contacts.steps.empty())
-      ThrowInputError(ref.file.string(), contacts.id, "a plan with at least one step", "none");
+    const auto loaded = task::LoadScenePlanRef(job.scene_plan, job.partnet_root);
+    const task::ContactPlan& contacts = loaded.plan;
+    story_scene = std::make_shared<scene::Scene>(*loaded.scene);
     instructions = BuildInstructions(contacts, *story_scene);
     plan.planner = "sceneplan";
     plan.theme = "UniHSI plan " + contacts.id;
     plan.layout.mode = "given";
-    plan.narrative = "Chain of contacts " + contacts.id + " of " + ref.file.filename().string() +
+    plan.narrative = "Chain of contacts " + contacts.id + " of " + loaded.file.filename().string() +
                      " (" + std::to_string(contacts.steps.size()) + " steps).";
-    plan_json = {{"scene_plan", ref.file.string()},
+    plan_json = {{"scene_plan", loaded.file.string()},
                  {"id", contacts.id},
-                 {"plan", ReadJsonFile(ref.file)[contacts.id]}};
+                 {"plan", ReadJsonFile(loaded.file)[contacts.id]}};
   } else {
     if (!job.input.empty() && IsPlanJson(ReadJsonFile(job.input))) {
       plan = planner::LoadPlan(job.input);

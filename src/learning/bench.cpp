@@ -7,6 +7,7 @@
 #include "sims/core/parallel.h"
 #include "sims/learning/motion_demo.h"
 #include "sims/learning/sim_vec_env.h"
+#include "sims/learning/text_styles.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 
@@ -29,6 +30,7 @@ double MeasureSgemmGflops(int n, int repeats) {
 nlohmann::json RunLearnerBenchmark(const std::filesystem::path& config_path, int iterations) {
   auto config = LoadConfig<TrainConfig>(config_path);
   auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
+  ApplyStyleModel(config.skill, &setup);
   auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, config.env, setup.skill);
   std::shared_ptr<const DemoSource> demo;
   if (config.learner.amp.enabled && setup.context.motions)

@@ -25,4 +25,10 @@ std::shared_ptr<const task::StyleTable> TextAlignedStyles(const motion::MotionLi
   return std::make_shared<const task::StyleTable>(std::move(z));
 }
 
+void ApplyStyleModel(const task::SkillConfig& config, task::SkillSetup* setup) {
+  if (config.style_model.empty() || !setup->context.motions) return;
+  setup->context.styles = TextAlignedStyles(*setup->context.motions, config.style_model);
+  setup->skill->SetStyleTable(setup->context.styles);
+}
+
 }  // namespace sims::learning

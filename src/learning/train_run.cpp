@@ -82,13 +82,6 @@ void TruncateLog(const std::filesystem::path& csv, int64_t last_iteration) {
 
 }  // namespace
 
-void WriteTrainingReport(const std::filesystem::path& csv, const std::filesystem::path& html,
-                         const std::string& title) {
-  // The report lives in io (grouped learning curves + one plot per column); kept here so
-  // callers of the learning API need not change.
-  io::WriteTrainingReport(csv, html, title);
-}
-
 int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   const auto& out = options.out_dir;
   const auto config_path = out / "config.json";
@@ -114,10 +107,7 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   if (!options.resume) SaveConfig(config_path, config);
 
   auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
-  if (!config.skill.style_model.empty() && setup.context.motions) {
-    setup.context.styles = TextAlignedStyles(*setup.context.motions, config.skill.style_model);
-    setup.skill->SetStyleTable(setup.context.styles);
-  }
+  ApplyStyleModel(config.skill, &setup);
   auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, config.env, setup.skill);
   auto vec = std::make_shared<SimVecEnv>(env);
   std::shared_ptr<const DemoSource> demo;
@@ -155,7 +145,7 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   auto save_all = [&]() {
     trainer.SaveCheckpoint(ckpt_path);
     trainer.ExportPolicy(out / "policy.pt", extra.dump());
-    WriteTrainingReport(csv_path, out / "report.html", "train_policy " + config.skill.skill);
+    io::WriteTrainingReport(csv_path, out / "report.html", "train_policy " + config.skill.skill);
   };
 
   ProgressReporter progress("train " + config.skill.skill, config.iterations, "it", 10.0,

@@ -3,6 +3,7 @@
 #include "sims/core/config.h"
 #include "sims/core/error.h"
 #include "sims/scene/contact_targets.h"
+#include "sims/scene/loaders.h"
 
 namespace sims::task {
 
@@ -179,6 +180,20 @@ ContactPlan LoadContactPlan(const std::filesystem::path& json_path, const scene:
     ThrowInputError(src, id, "a plan id (" + ids + ")", "no such plan");
   }
   return ContactPlanFromJson(plans[id], scene, src, id);
+}
+
+LoadedScenePlan LoadScenePlanRef(const std::string& ref,
+                                 const std::filesystem::path& partnet_root) {
+  const auto r = scene::ParseScenePlanRef(ref);
+  LoadedScenePlan out;
+  out.file = r.file;
+  out.scene = std::make_shared<const scene::Scene>(scene::LoadScenePlan(
+      r.file, partnet_root.empty() ? scene::DefaultPartNetRoot() : partnet_root, r.id));
+  out.plan = LoadContactPlan(r.file, *out.scene, r.id);
+  if (out.plan.steps.empty())
+    ThrowInputError(r.file.string(), out.plan.id, "a plan with at least one chain-of-contacts step",
+                    "no steps");
+  return out;
 }
 
 }  // namespace sims::task

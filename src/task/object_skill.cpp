@@ -195,18 +195,22 @@ void ObjectSkill::CollectObjects(const std::string& what) {
                     std::to_string(s.objects.size()) + " objects, none suitable");
 }
 
+int ObjectSkill::SlotOf(int scene_object) const {
+  for (size_t k = 0; k < objects_.size(); ++k)
+    if (objects_[k].object == scene_object) return static_cast<int>(k);
+  return -1;
+}
+
 bool ObjectSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
   const int i = view.env_id;
-  int k = -1;
-  double best = std::numeric_limits<double>::infinity();
-  const Eigen::Vector2d pelvis = view.pose->root_pos.head<2>();
-  for (size_t j = 0; j < objects_.size(); ++j) {
-    if (target.object >= 0) {
-      if (objects_[j].object == target.object) k = static_cast<int>(j);
-      continue;
+  int k = target.object >= 0 ? SlotOf(target.object) : -1;
+  if (target.object < 0) {  // no object named: the nearest one
+    double best = std::numeric_limits<double>::infinity();
+    const Eigen::Vector2d pelvis = view.pose->root_pos.head<2>();
+    for (size_t j = 0; j < objects_.size(); ++j) {
+      const double d = (objects_[j].center - pelvis).squaredNorm();
+      if (d < best) best = d, k = static_cast<int>(j);
     }
-    const double d = (objects_[j].center - pelvis).squaredNorm();
-    if (d < best) best = d, k = static_cast<int>(j);
   }
   if (k < 0) return false;
   object_[i] = k;

@@ -169,13 +169,7 @@ void UnifiedSkill::SampleTask(int i, Rng& rng) {
     return;
   }
   steps_[i] = plan_;
-  for (int k = 0; k < static_cast<int>(objects_.size()); ++k)
-    if (objects_[k].object == plan_.front().object) object_[i] = k;
-}
-
-std::array<JointPair, sim::kNumContactJoints> UnifiedSkill::Pairs(const ContactStep& step,
-                                                                  const sim::BodyStates& b) const {
-  return ResolveStep(step, *context_.scene, b);
+  if (const int k = SlotOf(plan_.front().object); k >= 0) object_[i] = k;
 }
 
 void UnifiedSkill::UpdateGoals(int i, const std::array<JointPair, sim::kNumContactJoints>& pairs) {
@@ -209,9 +203,7 @@ bool UnifiedSkill::BeginInstruction(const sim::EnvView& view, const InstructionT
   if (!target.contact_step) return ObjectSkill::BeginInstruction(view, target);
   const ContactStep& step = *target.contact_step;
   const int i = view.env_id;
-  int k = -1;
-  for (int j = 0; j < static_cast<int>(objects_.size()); ++j)
-    if (objects_[j].object == step.object) k = j;
+  const int k = SlotOf(step.object);
   if (k < 0) return false;
   object_[i] = k;
   hold_[i] = 0;
@@ -224,7 +216,7 @@ bool UnifiedSkill::BeginInstruction(const sim::EnvView& view, const InstructionT
 
 void UnifiedSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
-  const auto pairs = Pairs(steps_[i][step_[i]], *view.bodies);
+  const auto pairs = ResolveStep(steps_[i][step_[i]], *context_.scene, *view.bodies);
   UpdateGoals(i, pairs);
   error_[i] = StepContactError(steps_[i][step_[i]], pairs, *view.bodies);
 }
@@ -233,7 +225,7 @@ sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
   const sim::BodyStates& b = *view.bodies;
   const ContactStep& st = steps_[i][step_[i]];
-  auto pairs = Pairs(st, b);
+  auto pairs = ResolveStep(st, *context_.scene, b);
   const StepReward sr =
       UniHsiStepReward(pairs, view.pose->root_pos, view.pose->root_lin_vel, FacingOf(*view.pose),
                        st.stand_point, config_.target_speed);
@@ -255,7 +247,7 @@ sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
     if (step_[i] + 1 < static_cast<int>(steps_[i].size())) {
       ++step_[i];
       still_[i] = 0;
-      pairs = Pairs(steps_[i][step_[i]], b);
+      pairs = ResolveStep(steps_[i][step_[i]], *context_.scene, b);
     } else {
       r.truncate = true;
     }

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "sims/motion/motion_library.h"
+#include "sims/task/skill.h"
 #include "sims/task/styles.h"
 
 namespace sims::learning {
@@ -15,5 +16,10 @@ namespace sims::learning {
 /// embedding of its first caption); throws sims::Error naming the folder if it cannot load.
 std::shared_ptr<const task::StyleTable> TextAlignedStyles(const motion::MotionLibrary& library,
                                                           const std::filesystem::path& model_dir);
+
+/// When config.style_model is set (and clips are loaded), replaces the setup's clip-name style
+/// codes by TextAlignedStyles in both the context and the skill, so training, evaluation and
+/// benchmarks all see the z the policy was trained with.
+void ApplyStyleModel(const task::SkillConfig& config, task::SkillSetup* setup);
 
 }  // namespace sims::learning

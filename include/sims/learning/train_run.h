@@ -48,8 +48,4 @@ struct TrainOptions {
 /// Runs (or resumes) training; returns the final iteration count.
 int64_t RunTraining(TrainConfig config, const TrainOptions& options);
 
-/// Writes the HTML training report (forwards to io::WriteTrainingReport).
-void WriteTrainingReport(const std::filesystem::path& csv, const std::filesystem::path& html,
-                         const std::string& title);
-
 }  // namespace sims::learning

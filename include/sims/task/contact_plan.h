@@ -8,6 +8,7 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,5 +68,18 @@ ContactPlan ContactPlanFromJson(const nlohmann::json& plan, const scene::Scene& 
 /// scene::LoadScenePlan built from the same file.
 ContactPlan LoadContactPlan(const std::filesystem::path& json_path, const scene::Scene& scene,
                             const std::string& plan_id = "");
+
+/// A ScenePlan reference loaded: the scene of its PartNet objects and its chain of contacts.
+struct LoadedScenePlan {
+  std::filesystem::path file;                 ///< The ScenePlan JSON.
+  std::shared_ptr<const scene::Scene> scene;  ///< Its objects.
+  ContactPlan plan;                           ///< Its steps (at least one).
+};
+
+/// Loads "plan.json[#id]" (scene::ParseScenePlanRef) with PartNet objects from
+/// `partnet_root` ("" = scene::DefaultPartNetRoot()); throws sims::Error for a plan without
+/// steps.
+LoadedScenePlan LoadScenePlanRef(const std::string& ref,
+                                 const std::filesystem::path& partnet_root = {});
 
 }  // namespace sims::task

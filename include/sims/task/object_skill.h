@@ -114,6 +114,8 @@ class ObjectSkill : public Skill {
   /// Fills objects() with the accepted scene objects (of config.object_categories when set);
   /// derived constructors call it last. Throws sims::Error naming the scene when none fits.
   void CollectObjects(const std::string& what);
+  /// Index in objects() of scene object `scene_object`, or −1 when the skill does not use it.
+  int SlotOf(int scene_object) const;
   /// Draws the episode's task on the env's object (runs before the initial state).
   virtual void SampleTask(int env_id, Rng& rng);
   /// Reference-state init consistent with the env's object; false = no suitable clip.

@@ -67,8 +67,6 @@ class UnifiedSkill : public ObjectSkill {
   size_t LoadTaskState(int env_id, const double* data, size_t size) override;
 
  private:
-  std::array<JointPair, sim::kNumContactJoints> Pairs(const ContactStep& step,
-                                                      const sim::BodyStates& b) const;
   void UpdateGoals(int env_id, const std::array<JointPair, sim::kNumContactJoints>& pairs);
   std::vector<ContactStep> Templates(int k) const;
 
