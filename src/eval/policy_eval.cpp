@@ -83,14 +83,12 @@ ResolvedConfig ResolveConfig(const PolicyEvalOptions& o, const learning::Policy&
     rc.skill = tc.skill;
     rc.env = tc.env;
   } else {
-    const nlohmann::json meta = nlohmann::json::parse(policy.metadata_json());
-    if (!meta.contains("extra") || !meta["extra"].contains("skill") ||
-        !meta["extra"].contains("env"))
-      ThrowInputError(src, "metadata.extra",
-                      "the skill and env configs train_policy stores with a policy (or --config)",
-                      "none");
-    rc.skill = ConfigFromJson<task::SkillConfig>(meta["extra"]["skill"], src + " (extra.skill)");
-    rc.env = ConfigFromJson<sim::EnvConfig>(meta["extra"]["env"], src + " (extra.env)");
+    auto stored = learning::ReadPolicyConfigs(policy, src);
+    if (!stored.env)
+      ThrowInputError(src, "metadata.extra.env",
+                      "the env config train_policy stores with a policy (or --config)", "none");
+    rc.skill = std::move(stored.skill);
+    rc.env = *stored.env;
   }
   if (!o.skill.empty() && o.skill != rc.skill.skill)
     ThrowInputError(src, "extra.skill.skill", "a '" + o.skill + "' policy (--skill)",

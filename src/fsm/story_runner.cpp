@@ -11,6 +11,7 @@
 #include "sims/core/log.h"
 #include "sims/core/progress.h"
 #include "sims/core/rng.h"
+#include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/contact_targets.h"
 #include "sims/sim/env.h"
@@ -75,13 +76,9 @@ struct LoadedPolicy {
 LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& file) {
   LoadedPolicy p;
   p.policy = std::make_unique<learning::Policy>(file);
-  const auto meta = nlohmann::json::parse(p.policy->metadata_json());
-  if (!meta.contains("extra") || !meta["extra"].contains("skill"))
-    ThrowInputError(file.string(), "metadata.extra.skill",
-                    "the skill config train_policy stores with the policy", "none");
-  p.skill_config = ConfigFromJson<task::SkillConfig>(meta["extra"]["skill"], file.string());
-  if (meta["extra"].contains("env"))
-    p.env_config = ConfigFromJson<sim::EnvConfig>(meta["extra"]["env"], file.string());
+  const auto stored = learning::ReadPolicyConfigs(*p.policy, file.string());
+  p.skill_config = stored.skill;
+  if (stored.env) p.env_config = *stored.env;
   const std::string trained = p.skill_config.skill;
   // sit_getup policies serve both skills; otherwise the policy must be for this skill.
   if (trained != skill && !(trained == "sit_getup" && (skill == "sit" || skill == "getup")))

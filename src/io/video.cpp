@@ -103,15 +103,6 @@ std::vector<double> Headings(const MotionRecord& rec) {
   return h;
 }
 
-std::vector<double> Smooth1d(const std::vector<double>& v, double sigma) {
-  std::vector<Eigen::Vector3d> tmp;
-  for (double x : v) tmp.emplace_back(x, 0, 0);
-  tmp = motion::GaussianSmooth(tmp, sigma);
-  std::vector<double> out;
-  for (const auto& t : tmp) out.push_back(t.x());
-  return out;
-}
-
 // Greedy word wrap into lines of at most `width` characters.
 std::vector<std::string> Wrap(const std::string& text, int width) {
   std::vector<std::string> lines;
@@ -276,7 +267,7 @@ VideoStats RenderModel(const MotionRecord& rec, sim::StaticGeometry geometry,
   std::vector<Eigen::Vector3d> roots;
   for (const auto& f : rec.frames) roots.push_back(f.root_pos);
   roots = motion::GaussianSmooth(roots, options.position_smoothing_s * rec_fps);
-  std::vector<double> heading = Smooth1d(Headings(rec), options.heading_smoothing_s * rec_fps);
+  std::vector<double> heading = motion::GaussianSmooth(Headings(rec), options.heading_smoothing_s * rec_fps);
 
   const double out_fps = options.fps > 0 ? options.fps : rec_fps;
   int n_out = static_cast<int>(std::floor(rec.duration() * out_fps + 1e-9)) + 1;

@@ -82,6 +82,18 @@ void TruncateLog(const std::filesystem::path& csv, int64_t last_iteration) {
 
 }  // namespace
 
+PolicyConfigs ReadPolicyConfigs(const Policy& policy, const std::string& source) {
+  const auto meta = nlohmann::json::parse(policy.metadata_json());
+  if (!meta.contains("extra") || !meta["extra"].contains("skill"))
+    ThrowInputError(source, "metadata.extra.skill",
+                    "the skill config train_policy stores with a policy", "none");
+  PolicyConfigs c;
+  c.skill = ConfigFromJson<task::SkillConfig>(meta["extra"]["skill"], source + " (extra.skill)");
+  if (meta["extra"].contains("env"))
+    c.env = ConfigFromJson<sim::EnvConfig>(meta["extra"]["env"], source + " (extra.env)");
+  return c;
+}
+
 int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   const auto& out = options.out_dir;
   const auto config_path = out / "config.json";

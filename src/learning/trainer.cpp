@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include <torch/torch.h>
@@ -420,6 +421,32 @@ std::string TensorString(const torch::Tensor& t) {
   const auto c = t.contiguous();
   return std::string(reinterpret_cast<const char*>(c.data_ptr<uint8_t>()), c.numel());
 }
+// Opens a policy file written by ExportPolicy and hands its archive and metadata to `use`;
+// any failure becomes one error naming the file.
+void ReadPolicyFile(
+    const std::filesystem::path& path,
+    const std::function<void(torch::serialize::InputArchive&, const std::string&)>& use) {
+  if (!std::filesystem::exists(path))
+    ThrowInputError(path.string(), "", "a policy file", "missing");
+  try {
+    torch::serialize::InputArchive archive;
+    archive.load_from(path.string());
+    use(archive, TensorString(ReadTensor(archive, "metadata")));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    ThrowInputError(path.string(), "", "a policy file written by ExportPolicy", e.what());
+  }
+}
+// The weights a policy file carries: actor-critic and observation normaliser.
+void LoadPolicyWeights(torch::serialize::InputArchive& archive, ActorCritic& ac,
+                       RunningMeanStd& obs_norm) {
+  torch::serialize::InputArchive ac_archive, norm_archive;
+  archive.read("actor_critic", ac_archive);
+  ac->load(ac_archive);
+  archive.read("obs_norm", norm_archive);
+  obs_norm->load(norm_archive);
+}
 }  // namespace
 
 void Trainer::SaveCheckpoint(const std::filesystem::path& path) const {
@@ -524,26 +551,15 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
 
 void Trainer::InitFromPolicy(const std::filesystem::path& path) {
   auto& m = *impl_;
-  if (!std::filesystem::exists(path))
-    ThrowInputError(path.string(), "", "a policy file", "missing");
-  try {
-    torch::serialize::InputArchive archive, ac, on;
-    archive.load_from(path.string());
-    const auto meta = nlohmann::json::parse(TensorString(ReadTensor(archive, "metadata")));
+  ReadPolicyFile(path, [&](torch::serialize::InputArchive& archive, const std::string& metadata) {
+    const auto meta = nlohmann::json::parse(metadata);
     if (meta.at("obs_dim").get<int64_t>() != m.obs_dim ||
         meta.at("network") != ConfigToJson(m.cfg.network))
       ThrowInputError(path.string(), "obs_dim/network",
                       "the same observation width and network sizes",
                       meta.at("obs_dim").dump() + " / " + meta.at("network").dump());
-    archive.read("actor_critic", ac);
-    m.ac->load(ac);
-    archive.read("obs_norm", on);
-    m.obs_norm->load(on);
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    ThrowInputError(path.string(), "", "a policy file written by ExportPolicy", e.what());
-  }
+    LoadPolicyWeights(archive, m.ac, m.obs_norm);
+  });
 }
 
 void Trainer::ExportPolicy(const std::filesystem::path& path, const std::string& extra_json) const {
@@ -600,12 +616,8 @@ struct Policy::Impl {
 
 Policy::Policy(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
   BindTorchThreads();
-  if (!std::filesystem::exists(path))
-    ThrowInputError(path.string(), "", "a policy file", "missing");
-  try {
-    torch::serialize::InputArchive archive;
-    archive.load_from(path.string());
-    impl_->metadata = TensorString(ReadTensor(archive, "metadata"));
+  ReadPolicyFile(path, [&](torch::serialize::InputArchive& archive, const std::string& metadata) {
+    impl_->metadata = metadata;
     const auto meta = nlohmann::json::parse(impl_->metadata);
     std::vector<sim::ObsSegment> segments;
     for (const auto& s : meta.at("segments")) {
@@ -623,16 +635,8 @@ Policy::Policy(const std::filesystem::path& path) : impl_(std::make_unique<Impl>
     impl_->action_dim = meta.at("action_dim").get<int>();
     impl_->ac = ActorCritic(segments, impl_->action_dim, net);
     impl_->obs_norm = RunningMeanStd(impl_->obs_dim, meta.at("obs_clip").get<double>());
-    torch::serialize::InputArchive ac, on;
-    archive.read("actor_critic", ac);
-    impl_->ac->load(ac);
-    archive.read("obs_norm", on);
-    impl_->obs_norm->load(on);
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    ThrowInputError(path.string(), "", "a policy file written by ExportPolicy", e.what());
-  }
+    LoadPolicyWeights(archive, impl_->ac, impl_->obs_norm);
+  });
 }
 
 Policy::~Policy() = default;

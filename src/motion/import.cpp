@@ -16,10 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool Contains(const std::vector<std::string>& v, const std::string& s) {
-  return std::find(v.begin(), v.end(), s) != v.end();
-}
-
 std::string Sanitize(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -146,8 +142,8 @@ void DatasetRule::Validate() const {
   } catch (const std::regex_error&) {
     Require(false, "match", "a valid ECMAScript regular expression");
   }
-  Require(skill.empty() || Contains(SkillLabels(), skill), "skill", "a known skill label");
-  Require(emotion.empty() || Contains(EmotionLabels(), emotion), "emotion",
+  Require(skill.empty() || IsSkillLabel(skill), "skill", "a known skill label");
+  Require(emotion.empty() || IsEmotionLabel(emotion), "emotion",
           "one of the 9 emotion labels");
   Require(weight >= 0, "weight", "a non-negative weight");
 }
@@ -157,8 +153,8 @@ void DatasetConfig::Validate() const {
   Require(!retarget.empty(), "retarget", "a retarget map path (relative to configs/)");
   Require(!pattern.empty(), "pattern", "a file-name glob such as *.bvh");
   Require(source_fps >= 0, "source_fps", "a frame rate, or 0 for any");
-  Require(Contains(SkillLabels(), default_skill), "default_skill", "a known skill label");
-  Require(Contains(EmotionLabels(), default_emotion), "default_emotion",
+  Require(IsSkillLabel(default_skill), "default_skill", "a known skill label");
+  Require(IsEmotionLabel(default_emotion), "default_emotion",
           "one of the 9 emotion labels");
   Require(captions.size() <= 5, "captions", "at most 5 caption templates");
 }

@@ -19,10 +19,6 @@ constexpr char kFormat[] = "sims-motion-clip";
 constexpr int kVersion = 1;
 constexpr char kMagic[8] = {'S', 'I', 'M', 'S', 'C', 'L', 'P', '1'};
 
-bool Contains(const std::vector<std::string>& v, const std::string& s) {
-  return std::find(v.begin(), v.end(), s) != v.end();
-}
-
 std::string Join(const std::vector<std::string>& v) {
   std::string out;
   for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
@@ -61,9 +57,17 @@ const std::vector<std::string>& SkillLabels() {
   return labels;
 }
 
+bool IsSkillLabel(const std::string& s) {
+  return std::find(SkillLabels().begin(), SkillLabels().end(), s) != SkillLabels().end();
+}
+
+bool IsEmotionLabel(const std::string& s) {
+  return std::find(EmotionLabels().begin(), EmotionLabels().end(), s) != EmotionLabels().end();
+}
+
 void MotionMeta::Validate() const {
-  Require(Contains(SkillLabels(), skill), "skill", "one of " + Join(SkillLabels()));
-  Require(Contains(EmotionLabels(), emotion), "emotion", "one of " + Join(EmotionLabels()));
+  Require(IsSkillLabel(skill), "skill", "one of " + Join(SkillLabels()));
+  Require(IsEmotionLabel(emotion), "emotion", "one of " + Join(EmotionLabels()));
   Require(captions.size() <= 5, "captions", "at most 5 captions");
   for (const auto& [k, v] : params) Require(std::isfinite(v), "params." + k, "a finite number");
 }
@@ -89,8 +93,11 @@ MotionClip::MotionClip(double fps, std::vector<MotionFrame> frames, MotionMeta m
   ComputeVelocities();
 }
 
-std::vector<Eigen::Vector3d> GaussianSmooth(const std::vector<Eigen::Vector3d>& values,
-                                            double sigma) {
+namespace {
+
+// Shared by the Vector3d and scalar overloads so both use the same kernel and summation order.
+template <typename T>
+std::vector<T> GaussianSmoothImpl(const std::vector<T>& values, double sigma, const T& zero) {
   const int n = static_cast<int>(values.size());
   if (sigma <= 0 || n <= 1) return values;
   const int radius = static_cast<int>(4.0 * sigma + 0.5);
@@ -99,11 +106,22 @@ std::vector<Eigen::Vector3d> GaussianSmooth(const std::vector<Eigen::Vector3d>& 
   for (int k = -radius; k <= radius; ++k)
     sum += w[k + radius] = std::exp(-0.5 * k * k / (sigma * sigma));
   for (double& x : w) x /= sum;
-  std::vector<Eigen::Vector3d> out(n, Eigen::Vector3d::Zero());
+  std::vector<T> out(n, zero);
   for (int i = 0; i < n; ++i)
     for (int k = -radius; k <= radius; ++k)
       out[i] += w[k + radius] * values[std::clamp(i + k, 0, n - 1)];
   return out;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> GaussianSmooth(const std::vector<Eigen::Vector3d>& values,
+                                            double sigma) {
+  return GaussianSmoothImpl<Eigen::Vector3d>(values, sigma, Eigen::Vector3d::Zero());
+}
+
+std::vector<double> GaussianSmooth(const std::vector<double>& values, double sigma) {
+  return GaussianSmoothImpl<double>(values, sigma, 0.0);
 }
 
 void MotionClip::ComputeVelocities() {

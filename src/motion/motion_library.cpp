@@ -23,17 +23,16 @@ void ManifestEntry::Validate() const {
   Require(!file.empty(), "file", "a clip file name");
   Require(weight > 0 && std::isfinite(weight), "weight", "a positive number");
   Require(captions.size() <= 5, "captions", "at most 5 captions");
-  Require(skill.empty() || Contains(SkillLabels(), skill), "skill", "a known skill label");
-  Require(emotion.empty() || Contains(EmotionLabels(), emotion), "emotion",
+  Require(skill.empty() || IsSkillLabel(skill), "skill", "a known skill label");
+  Require(emotion.empty() || IsEmotionLabel(emotion), "emotion",
           "one of the 9 emotion labels");
 }
 
 void MotionLibraryOptions::Validate() const {
   Require(control_dt > 0, "control_dt", "a positive time step");
   Require(amp_steps >= 1, "amp_steps", "at least 1");
-  for (const auto& s : skills) Require(Contains(SkillLabels(), s), "skills", "known skill labels");
-  for (const auto& e : emotions)
-    Require(Contains(EmotionLabels(), e), "emotions", "the 9 emotion labels");
+  for (const auto& s : skills) Require(IsSkillLabel(s), "skills", "known skill labels");
+  for (const auto& e : emotions) Require(IsEmotionLabel(e), "emotions", "the 9 emotion labels");
 }
 
 MotionManifest LoadManifest(const fs::path& path) { return LoadConfig<MotionManifest>(path); }

@@ -266,24 +266,24 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
     std::vector<double> flat_soles;
     for (std::size_t i = 0; i < fr.size(); ++i) {
       SkeletonForwardKinematics(skel, fr[i].root_pos, fr[i].root_rot, fr[i].dof_pos, &sp);
-      sole[i] = std::min(SoleHeight(skel, sp, false), SoleHeight(skel, sp, true));
+      const double foot_sole[2] = {SoleHeight(skel, sp, false), SoleHeight(skel, sp, true)};
+      sole[i] = std::min(foot_sole[0], foot_sole[1]);
       lowest = std::min(lowest, sole[i]);
       double flat = 1e9;
       for (bool left : {false, true}) {
         const Eigen::Vector3d up =
             sp.rot[left ? sim::kLeftFoot : sim::kRightFoot] * Eigen::Vector3d::UnitZ();
-        if (up.z() > std::cos(30 * M_PI / 180)) flat = std::min(flat, SoleHeight(skel, sp, left));
+        if (up.z() > std::cos(30 * M_PI / 180)) flat = std::min(flat, foot_sole[left]);
       }
       if (flat < 1e9) flat_soles.push_back(flat);
     }
     double level = lowest;
     if (config.ground == "percentile" && !flat_soles.empty()) {
-      std::vector<double> sorted = flat_soles;
       const std::size_t k =
-          std::min(sorted.size() - 1,
-                   static_cast<std::size_t>(config.ground_percentile / 100.0 * sorted.size()));
-      std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
-      level = sorted[k];
+          std::min(flat_soles.size() - 1,
+                   static_cast<std::size_t>(config.ground_percentile / 100.0 * flat_soles.size()));
+      std::nth_element(flat_soles.begin(), flat_soles.begin() + k, flat_soles.end());
+      level = flat_soles[k];
     }
     for (std::size_t i = 0; i < fr.size(); ++i)
       fr[i].root_pos.z() +=

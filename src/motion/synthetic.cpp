@@ -13,8 +13,7 @@ void SyntheticOptions::Validate() const {
   Require(fps > 0, "fps", "a positive frame rate");
   Require(variants >= 1 && variants <= 20, "variants", "between 1 and 20");
   for (const auto& s : skills)
-    Require(std::find(SkillLabels().begin(), SkillLabels().end(), s) != SkillLabels().end(),
-            "skills", "known skill labels (walk, sit, lie, reach, getup, idle)");
+    Require(IsSkillLabel(s), "skills", "known skill labels (walk, sit, lie, reach, getup, idle)");
 }
 
 std::filesystem::path WriteMotionDataset(const std::vector<MotionClip>& clips,

@@ -329,11 +329,6 @@ Eigen::Vector3d OnThigh(const SkeletonPose& sp, bool left, double along) {
          Eigen::Vector3d(0, left ? 0.025 : -0.025, 0.115);
 }
 
-struct Seated {
-  BodyKey key;  // seated, hands on thighs
-  double pelvis_x, pelvis_z;
-};
-
 // How far the hip may sit behind the seat's front edge: the thigh capsule slopes down to the
 // knee (knee height is fixed by the shin with the feet flat) and must clear the edge.
 double HipBehindEdge(double seat_height) {
@@ -365,12 +360,10 @@ FurnitureSpec PlaceSeat(double height, double depth, double width) {
   return f;
 }
 
-Seated SeatedKey(const FurnitureSpec& seat, double t) {
-  Seated s;
-  s.pelvis_x = seat.front_x - HipBehindEdge(seat.height);
-  s.pelvis_z = seat.height + 0.085;
+// Seated on `seat` with the hands on the thighs.
+BodyKey SeatedKey(const FurnitureSpec& seat, double t) {
   BodyKey k = StandingKey(t, 0.1);
-  k.pelvis = Eigen::Vector3d(s.pelvis_x, 0, s.pelvis_z);
+  k.pelvis = Eigen::Vector3d(seat.front_x - HipBehindEdge(seat.height), 0, seat.height + 0.085);
   k.pitch = Deg(2);
   k.dofs[kAbdY] = Deg(6);
   k.dofs[kNeckY] = -Deg(5);
@@ -378,13 +371,12 @@ Seated SeatedKey(const FurnitureSpec& seat, double t) {
   // Hands on the thighs, a little behind the knees.
   const SkeletonPose sp = PoseOf(k);
   HandsTo(&k, OnThigh(sp, false, 0.65), OnThigh(sp, true, 0.65));
-  s.key = k;
-  return s;
+  return k;
 }
 
 // Standing in front of the seat, then down onto it. `lean` scales the forward trunk lean.
 std::vector<BodyKey> SitDownKeys(const FurnitureSpec& seat, double lean, double t_sit) {
-  const Seated seated = SeatedKey(seat, 0);
+  const BodyKey seated = SeatedKey(seat, 0);
   const double h = Skel().standing_root_height();
   std::vector<BodyKey> keys;
   BodyKey stand = StandingKey(0.0, 0.1);
@@ -400,15 +392,15 @@ std::vector<BodyKey> SitDownKeys(const FurnitureSpec& seat, double lean, double 
   bend.dofs[kRShY] = bend.dofs[kLShY] = -Deg(30);
   bend.dofs[kRElbow] = bend.dofs[kLElbow] = -Deg(25);
   keys.push_back(bend);
-  BodyKey land = seated.key;
+  BodyKey land = seated;
   land.t = 0.5 + 0.8 * t_sit;
-  land.pelvis = Eigen::Vector3d(seated.pelvis_x + 0.06, 0, seated.pelvis_z + 0.05);
+  land.pelvis = Eigen::Vector3d(seated.pelvis.x() + 0.06, 0, seated.pelvis.z() + 0.05);
   land.pitch = Deg(26 * lean);
   land.dofs[kAbdY] = Deg(8 * lean);
   land.dofs[kNeckY] = -Deg(20 * lean);
   land.limbs[0].weight = land.limbs[1].weight = 1.0;
   keys.push_back(land);
-  keys.push_back(At(seated.key, 0.5 + t_sit, true));
+  keys.push_back(At(seated, 0.5 + t_sit, true));
   return keys;
 }
 
@@ -423,10 +415,6 @@ MotionClip SitDown(const FurnitureSpec& seat, double lean, double t_sit, double 
 }
 
 // Supine / side lying on a bed whose long axis is world y; head toward +y.
-struct Lying {
-  BodyKey key;
-};
-
 FurnitureSpec BedFor(double height) {
   FurnitureSpec bed = PlaceSeat(height, 1.0, 2.2);
   bed.center_y = -0.1;
@@ -667,7 +655,7 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options) 
     struct SitIdle {
       std::string name, emotion, style;
       std::vector<std::string> captions;
-      std::function<void(BodyKey&, IdleNoise&, const FurnitureSpec&)> edit;
+      std::function<void(BodyKey&, IdleNoise&)> edit;
     };
     const std::vector<SitIdle> sits = {
         {"sit_idle_upright",
@@ -675,13 +663,13 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options) 
          "upright",
          {"a person sits upright on a chair", "sitting straight with hands on the thighs",
           "someone sits still and looks around", "a person waits seated"},
-         [](BodyKey&, IdleNoise& n, const FurnitureSpec&) { n.look = Deg(20); }},
+         [](BodyKey&, IdleNoise& n) { n.look = Deg(20); }},
         {"sit_idle_lean_back",
          "relaxed",
          "lean back",
          {"a person leans back relaxed in the seat", "sitting comfortably, leaning back",
           "someone lounges in a chair", "a relaxed person reclines while sitting"},
-         [](BodyKey& k, IdleNoise& n, const FurnitureSpec&) {
+         [](BodyKey& k, IdleNoise& n) {
            k.pelvis.x() -= 0.04;
            k.pitch = -Deg(14), k.dofs[kAbdY] = -Deg(4), k.dofs[kNeckY] = Deg(12);
            const SkeletonPose sp = PoseOf(k);
@@ -694,7 +682,7 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options) 
          {"a person sits with the right leg crossed over the left",
           "sitting cross-legged on a chair", "someone sits with legs crossed",
           "a person crosses the legs while seated"},
-         [](BodyKey& k, IdleNoise& n, const FurnitureSpec&) {
+         [](BodyKey& k, IdleNoise& n) {
            // Right knee over the left one, right foot hanging beside the left shin.
            k.limbs[3].target.y() = 0.06;
            const SkeletonPose sp = PoseOf(k);
@@ -714,7 +702,7 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options) 
          {"a person sits with the hands on the knees",
           "sitting forward, hands resting on the knees",
           "someone sits attentively with hands on knees"},
-         [](BodyKey& k, IdleNoise& n, const FurnitureSpec&) {
+         [](BodyKey& k, IdleNoise& n) {
            k.pitch = Deg(10), k.dofs[kAbdY] = Deg(8);
            const SkeletonPose sp = PoseOf(k);
            HandsTo(&k, sp.pos[sim::kRightShin] + Eigen::Vector3d(0.02, 0, 0.09),
@@ -726,9 +714,9 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options) 
       for (int v = 0; v < options.variants; ++v) {
         const FurnitureSpec seat =
             PlaceSeat(0.44 + (v == 0 ? 0.0 : rng.Uniform(-0.04, 0.02)), 0.45, 0.5);
-        BodyKey k = SeatedKey(seat, 0.0).key;
+        BodyKey k = SeatedKey(seat, 0.0);
         IdleNoise n;
-        r.edit(k, n, seat);
+        r.edit(k, n);
         n.seed = rng.NextU64();
         out.push_back(Build({k, At(k, 6.0, true)}, n,
                             SyntheticMeta(r.name + Suffix(v), "sit", r.emotion, r.style, r.captions,

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <spdlog/spdlog.h>
 
@@ -258,27 +259,31 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
   }
   std::vector<double> lift(n, 0.0);
   if (furniture) {
-    const sim::Humanoid h(sim::BuildModel(FurnitureGeometry(*furniture)));
-    sim::MjDataPtr d = sim::MakeData(h.model());
+    // The floor-only model is the shared default humanoid; furniture needs its own model.
+    const std::shared_ptr<const sim::Humanoid> h =
+        furniture->empty()
+            ? HumanoidSkeleton::DefaultHumanoid()
+            : std::make_shared<const sim::Humanoid>(sim::BuildModel(FurnitureGeometry(*furniture)));
+    sim::MjDataPtr d = sim::MakeData(h->model());
     constexpr double kTolerance = 5e-4;
     for (int f = 0; f < n; ++f) {
       for (int iter = 0; iter < 10; ++iter) {
         const MotionFrame fr =
             SolveFrame(channels[f], noise_dofs[f], noise_root[f], lift[f], nullptr);
-        const double pen = MeasurePenetration(h, d.get(), fr).world;
+        const double pen = MeasurePenetration(*h, d.get(), fr).world;
         if (pen <= kTolerance) break;
         lift[f] += pen;
       }
     }
     // A smooth envelope above the per-frame lifts (running max, Gaussian, max).
-    std::vector<Eigen::Vector3d> env(n);
+    std::vector<double> env(n);
     for (int f = 0; f < n; ++f) {
       double m = 0;
       for (int k = std::max(0, f - 4); k <= std::min(n - 1, f + 4); ++k) m = std::max(m, lift[k]);
-      env[f] = Eigen::Vector3d(m, 0, 0);
+      env[f] = m;
     }
     env = GaussianSmooth(env, 2.0);
-    for (int f = 0; f < n; ++f) lift[f] = std::max(env[f].x(), lift[f]);
+    for (int f = 0; f < n; ++f) lift[f] = std::max(env[f], lift[f]);
   }
   std::vector<MotionFrame> frames(n);
   for (int f = 0; f < n; ++f) {

@@ -236,10 +236,8 @@ MotionClip GenerateWalk(const WalkSpec& spec, const MotionMeta& meta_in, double 
     z[f] = std::min(h_stand - st.crouch - 0.004 + bob, bound[f]);
   }
   // Smooth the height where the reach bound kinks it, without exceeding the bound.
-  std::vector<Eigen::Vector3d> zs(n);
-  for (int f = 0; f < n; ++f) zs[f] = Eigen::Vector3d(z[f], 0, 0);
-  zs = GaussianSmooth(zs, 1.2);
-  for (int f = 0; f < n; ++f) frames[f].root_pos.z() = std::min(zs[f].x(), bound[f]);
+  const std::vector<double> zs = GaussianSmooth(z, 1.2);
+  for (int f = 0; f < n; ++f) frames[f].root_pos.z() = std::min(zs[f], bound[f]);
 
   for (int f = 0; f < n; ++f) {
     MotionFrame& out = frames[f];

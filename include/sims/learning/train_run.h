@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "sims/learning/config.h"
+#include "sims/learning/trainer.h"
 #include "sims/sim/env.h"
 #include "sims/task/skill.h"
 
@@ -44,6 +45,15 @@ struct TrainOptions {
   /// Initialise actor, critic and normaliser from a policy file (e.g. walk for other skills).
   std::filesystem::path init_policy;
 };
+
+/// The training configs train_policy stores in a policy's metadata ("extra").
+struct PolicyConfigs {
+  task::SkillConfig skill;            ///< extra.skill.
+  std::optional<sim::EnvConfig> env;  ///< extra.env, when stored.
+};
+
+/// Reads a policy's stored configs; throws sims::Error naming `source` when it has none.
+PolicyConfigs ReadPolicyConfigs(const Policy& policy, const std::string& source);
 
 /// Runs (or resumes) training; returns the final iteration count.
 int64_t RunTraining(TrainConfig config, const TrainOptions& options);

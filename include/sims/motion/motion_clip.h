@@ -28,6 +28,10 @@ inline constexpr int kFrameWidth = 3 + 4 + sim::kNumDofs;
 const std::vector<std::string>& EmotionLabels();
 /// Known skill labels: walk, sit, lie, reach, getup, idle, other.
 const std::vector<std::string>& SkillLabels();
+/// Whether `s` is one of SkillLabels().
+bool IsSkillLabel(const std::string& s);
+/// Whether `s` is one of EmotionLabels().
+bool IsEmotionLabel(const std::string& s);
 
 /// Clip labels and provenance.
 struct MotionMeta {
@@ -129,6 +133,8 @@ MotionClip LoadClip(const std::filesystem::path& json_path);
 /// Smooths a sequence with a Gaussian of `sigma` samples (edges repeat the end values).
 std::vector<Eigen::Vector3d> GaussianSmooth(const std::vector<Eigen::Vector3d>& values,
                                             double sigma);
+/// Scalar GaussianSmooth (same kernel and edge handling).
+std::vector<double> GaussianSmooth(const std::vector<double>& values, double sigma);
 
 /// FK of every frame through MuJoCo (sim::ForwardKinematics): body states per frame.
 std::vector<sim::BodyStates> ClipBodyStates(const MotionClip& clip, const sim::Humanoid& humanoid);
