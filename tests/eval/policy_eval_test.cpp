@@ -57,14 +57,20 @@ void ExpectError(const std::function<void()>& f, const std::vector<std::string>&
   }
 }
 
-TEST(PolicyEvalTest, WalkSmokeAndDeterminism) {
-  const fs::path policy = TinyPolicy(WalkConfig(), 40, "eval_walk");
+// `trials` trials of `policy` on 2 envs and 2 threads.
+PolicyEvalOptions TwoEnvOptions(const fs::path& policy, int trials) {
   PolicyEvalOptions o;
   o.checkpoint = policy;
-  o.trials = 3;
-  o.seed = 5;
+  o.trials = trials;
   o.num_envs = 2;
   o.threads = 2;
+  return o;
+}
+
+TEST(PolicyEvalTest, WalkSmokeAndDeterminism) {
+  const fs::path policy = TinyPolicy(WalkConfig(), 40, "eval_walk");
+  PolicyEvalOptions o = TwoEnvOptions(policy, 3);
+  o.seed = 5;
   const PolicyEvalReport r = EvaluatePolicy(o);
   EXPECT_EQ(r.skill, "walk");
   ASSERT_EQ(r.results.size(), 3u);
@@ -114,11 +120,7 @@ TEST(PolicyEvalTest, SitOnHeldOutObjects) {
   sc.skill = "sit";
   sc.num_objects = 2;
   const fs::path policy = TinyPolicy(sc, 30, "eval_sit");
-  PolicyEvalOptions o;
-  o.checkpoint = policy;
-  o.trials = 2;
-  o.num_envs = 2;
-  o.threads = 2;
+  PolicyEvalOptions o = TwoEnvOptions(policy, 2);
   const PolicyEvalReport r = EvaluatePolicy(o);
   EXPECT_EQ(r.skill, "sit");
   EXPECT_EQ(r.scene, "training_ground_sit");
@@ -133,11 +135,7 @@ TEST(PolicyEvalTest, UnifiedOnAScenePlan) {
   sc.skill = "unified";
   sc.num_objects = 2;
   const fs::path policy = TinyPolicy(sc, 30, "eval_unified");
-  PolicyEvalOptions o;
-  o.checkpoint = policy;
-  o.trials = 2;
-  o.num_envs = 2;
-  o.threads = 2;
+  PolicyEvalOptions o = TwoEnvOptions(policy, 2);
   o.scene_plan = sims::testing::TestData("scene/sceneplan.json").string() + "#0000";
   o.partnet_root = sims::testing::TestData("scene/partnet");
   const PolicyEvalReport r = EvaluatePolicy(o);

@@ -307,19 +307,19 @@ TEST(UnifiedSkillTest, StepsAdvanceWithinTheEpisode) {
 }
 
 TEST(UnifiedSkillTest, BeginInstructionRunsOneContactStep) {
-  const auto json = sims::testing::TestData("scene/sceneplan.json");
-  auto scene = std::make_shared<const scene::Scene>(
-      scene::LoadScenePlan(json, sims::testing::TestData("scene/partnet"), "0000"));
+  const auto loaded =
+      LoadScenePlanRef(sims::testing::TestData("scene/sceneplan.json").string() + "#0000",
+                       sims::testing::TestData("scene/partnet"));
+  const ContactPlan& plan = loaded.plan;
   SkillConfig c;
   c.skill = "unified";
-  auto setup = CreateSkill(c, 1, 4, scene);
+  auto setup = CreateSkill(c, 1, 4, loaded.scene);
   auto* u = dynamic_cast<UnifiedSkill*>(setup.skill.get());
   sim::EnvConfig ec;
   ec.num_envs = 1;
   ec.threads = 1;
   sim::BatchedEnv env(setup.context.humanoid, ec, setup.skill);
   env.Reset();
-  const auto plan = LoadContactPlan(json, *scene, "0000");
   ASSERT_EQ(plan.steps.size(), 2u);
   InstructionTarget t;
   t.contact_step = std::make_shared<const ContactStep>(plan.steps[1]);  // pelvis on the seat
