@@ -267,7 +267,8 @@ VideoStats RenderModel(const MotionRecord& rec, sim::StaticGeometry geometry,
   std::vector<Eigen::Vector3d> roots;
   for (const auto& f : rec.frames) roots.push_back(f.root_pos);
   roots = motion::GaussianSmooth(roots, options.position_smoothing_s * rec_fps);
-  std::vector<double> heading = motion::GaussianSmooth(Headings(rec), options.heading_smoothing_s * rec_fps);
+  std::vector<double> heading =
+      motion::GaussianSmooth(Headings(rec), options.heading_smoothing_s * rec_fps);
 
   const double out_fps = options.fps > 0 ? options.fps : rec_fps;
   int n_out = static_cast<int>(std::floor(rec.duration() * out_fps + 1e-9)) + 1;

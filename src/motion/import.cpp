@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <exception>
+#include <optional>
 #include <regex>
 
 #include <spdlog/spdlog.h>
@@ -51,6 +53,51 @@ fs::path ResolveProjectPath(const std::string& p) {
   return path.is_absolute() ? path : ProjectRoot() / path;
 }
 
+// Replaces the manifest entry of the same file, or appends it.
+void UpsertEntry(MotionManifest* m, const ManifestEntry& entry) {
+  auto it = std::find_if(m->clips.begin(), m->clips.end(),
+                         [&](const ManifestEntry& e) { return e.file == entry.file; });
+  if (it != m->clips.end())
+    *it = entry;
+  else
+    m->clips.push_back(entry);
+}
+
+// ImportBvhFile without the manifest update, with the retarget map already loaded.
+ImportSummary ImportWithMap(const fs::path& bvh_path, const fs::path& out_dir,
+                            const ImportOptions& options, const RetargetConfig& map,
+                            ManifestEntry* entry) {
+  const BvhMotion bvh = ReadBvh(bvh_path);
+  RetargetReport report;
+  MotionClip clip = RetargetBvh(bvh, map, HumanoidSkeleton::Default(), &report, bvh_path.string());
+  MotionMeta& meta = clip.mutable_meta();
+  meta.name = options.name.empty() ? Sanitize(bvh_path.stem().string()) : Sanitize(options.name);
+  meta.captions = options.captions;
+  meta.skill = options.skill;
+  meta.emotion = options.emotion;
+  meta.furniture = options.furniture;
+  meta.source = bvh_path.string() + " (retarget map " + map.name + ")";
+  meta.params["retarget_scale"] = report.scale;
+  meta.params["source_fps"] = report.source_fps;
+  meta.params["ground_shift"] = report.ground_shift;
+  ValidateConfig(meta, "import of " + bvh_path.string());
+
+  const fs::path json = out_dir / (meta.name + ".json");
+  SaveClip(clip, json);
+  entry->file = json.filename().string();
+  entry->weight = options.weight;
+
+  ImportSummary s;
+  s.name = meta.name;
+  s.output = json;
+  s.frames = clip.num_frames();
+  s.fps = clip.fps();
+  s.duration = clip.duration();
+  s.source_fps = report.source_fps;
+  s.warnings = report.warnings;
+  return s;
+}
+
 }  // namespace
 
 std::string ImportSummary::Line() const {
@@ -88,12 +135,7 @@ std::string ToWords(const std::string& s) {
 void AddToManifest(const fs::path& manifest_path, const ManifestEntry& entry) {
   MotionManifest m;
   if (fs::exists(manifest_path)) m = LoadManifest(manifest_path);
-  auto it = std::find_if(m.clips.begin(), m.clips.end(),
-                         [&](const ManifestEntry& e) { return e.file == entry.file; });
-  if (it != m.clips.end())
-    *it = entry;
-  else
-    m.clips.push_back(entry);
+  UpsertEntry(&m, entry);
   SaveManifest(manifest_path, m);
 }
 
@@ -102,36 +144,9 @@ ImportSummary ImportBvhFile(const fs::path& bvh_path, const fs::path& out_dir,
   if (options.map.empty())
     ThrowInputError("import_motion", "--map", "a retarget map (configs/retarget/<dataset>.json)");
   const RetargetConfig map = LoadRetargetConfig(options.map);
-  const BvhMotion bvh = ReadBvh(bvh_path);
-  RetargetReport report;
-  MotionClip clip = RetargetBvh(bvh, map, HumanoidSkeleton::Default(), &report, bvh_path.string());
-  MotionMeta& meta = clip.mutable_meta();
-  meta.name = options.name.empty() ? Sanitize(bvh_path.stem().string()) : Sanitize(options.name);
-  meta.captions = options.captions;
-  meta.skill = options.skill;
-  meta.emotion = options.emotion;
-  meta.furniture = options.furniture;
-  meta.source = bvh_path.string() + " (retarget map " + map.name + ")";
-  meta.params["retarget_scale"] = report.scale;
-  meta.params["source_fps"] = report.source_fps;
-  meta.params["ground_shift"] = report.ground_shift;
-  ValidateConfig(meta, "import of " + bvh_path.string());
-
-  const fs::path json = out_dir / (meta.name + ".json");
-  SaveClip(clip, json);
   ManifestEntry e;
-  e.file = json.filename().string();
-  e.weight = options.weight;
+  ImportSummary s = ImportWithMap(bvh_path, out_dir, options, map, &e);
   AddToManifest(out_dir / "manifest.json", e);
-
-  ImportSummary s;
-  s.name = meta.name;
-  s.output = json;
-  s.frames = clip.num_frames();
-  s.fps = clip.fps();
-  s.duration = clip.duration();
-  s.source_fps = report.source_fps;
-  s.warnings = report.warnings;
   return s;
 }
 
@@ -143,8 +158,7 @@ void DatasetRule::Validate() const {
     Require(false, "match", "a valid ECMAScript regular expression");
   }
   Require(skill.empty() || IsSkillLabel(skill), "skill", "a known skill label");
-  Require(emotion.empty() || IsEmotionLabel(emotion), "emotion",
-          "one of the 9 emotion labels");
+  Require(emotion.empty() || IsEmotionLabel(emotion), "emotion", "one of the 9 emotion labels");
   Require(weight >= 0, "weight", "a non-negative weight");
 }
 
@@ -154,8 +168,7 @@ void DatasetConfig::Validate() const {
   Require(!pattern.empty(), "pattern", "a file-name glob such as *.bvh");
   Require(source_fps >= 0, "source_fps", "a frame rate, or 0 for any");
   Require(IsSkillLabel(default_skill), "default_skill", "a known skill label");
-  Require(IsEmotionLabel(default_emotion), "default_emotion",
-          "one of the 9 emotion labels");
+  Require(IsEmotionLabel(default_emotion), "default_emotion", "one of the 9 emotion labels");
   Require(captions.size() <= 5, "captions", "at most 5 caption templates");
 }
 
@@ -220,6 +233,21 @@ std::vector<ImportSummary> ImportDataset(const fs::path& config_path, const fs::
   if (files.empty())
     ThrowInputError(config_path.string(), "pattern",
                     "files matching '" + config.pattern + "' under " + root.string(), "none");
+  // The map is read and the manifest written once for all files; a map that fails to load
+  // fails every imported file, as loading it per file would.
+  std::optional<RetargetConfig> retarget;
+  std::exception_ptr map_error;
+  try {
+    retarget = LoadRetargetConfig(map);
+  } catch (...) {
+    map_error = std::current_exception();
+  }
+  const fs::path manifest_path = out / "manifest.json";
+  std::optional<MotionManifest> manifest;  // read at the first successful import
+  bool manifest_changed = false;
+  auto save_manifest = [&] {
+    if (manifest_changed) SaveManifest(manifest_path, *manifest);
+  };
   std::vector<ImportSummary> out_list;
   int failed = 0;
   for (const fs::path& f : files) {
@@ -227,22 +255,34 @@ std::vector<ImportSummary> ImportDataset(const fs::path& config_path, const fs::
     bool skip = false;
     ImportOptions o = DatasetFileOptions(config, rel, &skip);
     if (skip) continue;
-    o.map = map;
     try {
-      ImportSummary s = ImportBvhFile(f, out, o);
+      if (map_error) std::rethrow_exception(map_error);
+      ManifestEntry entry;
+      ImportSummary s = ImportWithMap(f, out, o, *retarget, &entry);
+      if (!manifest)
+        manifest = fs::exists(manifest_path) ? LoadManifest(manifest_path) : MotionManifest{};
+      UpsertEntry(&*manifest, entry);
+      manifest_changed = true;
       if (config.source_fps > 0 && std::abs(s.source_fps - config.source_fps) > 0.5)
         s.warnings.push_back("source frame rate differs from the dataset's " +
                              std::to_string(config.source_fps) + " fps");
       out_list.push_back(std::move(s));
     } catch (const Error& e) {
-      if (!keep_going) throw;
+      if (!keep_going) {
+        save_manifest();
+        throw;
+      }
       ++failed;
       ImportSummary s;
       s.name = o.name;
       s.warnings.push_back(std::string("FAILED: ") + e.what());
       out_list.push_back(std::move(s));
+    } catch (...) {
+      save_manifest();
+      throw;
     }
   }
+  save_manifest();
   if (failures) *failures = failed;
   return out_list;
 }

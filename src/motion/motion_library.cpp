@@ -24,8 +24,7 @@ void ManifestEntry::Validate() const {
   Require(weight > 0 && std::isfinite(weight), "weight", "a positive number");
   Require(captions.size() <= 5, "captions", "at most 5 captions");
   Require(skill.empty() || IsSkillLabel(skill), "skill", "a known skill label");
-  Require(emotion.empty() || IsEmotionLabel(emotion), "emotion",
-          "one of the 9 emotion labels");
+  Require(emotion.empty() || IsEmotionLabel(emotion), "emotion", "one of the 9 emotion labels");
 }
 
 void MotionLibraryOptions::Validate() const {

@@ -181,6 +181,7 @@ const std::vector<double>& SwivelCandidates() {
 // Damped least squares on a limb's DoFs (within the limits) towards an end-body position and,
 // optionally, orientation. Used when the analytic solution had to be clamped: near 90° of
 // hip flexion the x and z hinges nearly align and clamping one of them alone moves the foot.
+// Returns the final residual norm (the position miss when there is no orientation target).
 double RefineLimb(const HumanoidSkeleton& skel, const Eigen::Vector3d& root_pos,
                   const Eigen::Quaterniond& root_rot, int end_body, int first_dof, int num_dofs,
                   const Eigen::Vector3d& p_target, const Eigen::Quaterniond* R_target,
@@ -295,6 +296,7 @@ LimbIkResult SolveLegIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
   if (clamped > 0 && t.norm() < (l1 + l2) * (1 - 1e-6)) {
     const Eigen::Quaterniond R_foot = R_W_foot.normalized();
     RefineLimb(skel, root_pos, root_rot, foot, hip_dof, 7, p_W_ankle, &R_foot, dofs);
+    // RefineLimb's error includes the foot orientation; report the ankle position miss alone.
     SkeletonPose sp;
     SkeletonForwardKinematics(skel, root_pos, root_rot, *dofs, &sp);
     result.position_error = (sp.pos[foot] - p_W_ankle).norm();
@@ -356,10 +358,9 @@ LimbIkResult SolveArmIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
     const Eigen::Quaterniond R_t0 = sim::HingeTripleRotation(d[0], d[1], d[2]);
     const Eigen::Quaterniond R_root = R_W_torso * (skel.rest[sim::kTorso] * R_t0).conjugate();
     const Eigen::Vector3d p_root = p_W_torso - R_root * skel.offset[sim::kTorso];
-    RefineLimb(skel, p_root, R_root, hand, sh_dof, 4, p_W_hand, nullptr, dofs);
-    SkeletonPose sp;
-    SkeletonForwardKinematics(skel, p_root, R_root, *dofs, &sp);
-    result.position_error = (sp.pos[hand] - p_W_hand).norm();
+    // Position-only refinement: its residual is exactly the hand miss.
+    result.position_error =
+        RefineLimb(skel, p_root, R_root, hand, sh_dof, 4, p_W_hand, nullptr, dofs);
   }
   return result;
 }

@@ -1,8 +1,5 @@
 #include "sims/motion/synthetic.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "motion/synthetic_internal.h"
 #include "sims/core/error.h"
 #include "sims/core/rng.h"
