@@ -2,20 +2,28 @@
 
 namespace sims::learning {
 
-torch::Tensor GradientPenalty(Discriminator& disc, const torch::Tensor& demo,
-                              const torch::Tensor& demo_style) {
-  auto x = demo.detach().requires_grad_(true);
-  const auto logits = disc->forward(x, demo_style);
+namespace {
+// mean ‖∂(Σ logits)/∂x‖² for logits already computed from x (x requires grad).
+torch::Tensor PenaltyOf(const torch::Tensor& logits, const torch::Tensor& x) {
   const auto grad = torch::autograd::grad({logits.sum()}, {x}, /*grad_outputs=*/{},
                                           /*retain_graph=*/true, /*create_graph=*/true)[0];
   return grad.pow(2).sum(-1).mean();
+}
+}  // namespace
+
+torch::Tensor GradientPenalty(Discriminator& disc, const torch::Tensor& demo,
+                              const torch::Tensor& demo_style) {
+  auto x = demo.detach().requires_grad_(true);
+  return PenaltyOf(disc->forward(x, demo_style), x);
 }
 
 DiscLoss DiscriminatorLoss(Discriminator& disc, const torch::Tensor& demo,
                            const torch::Tensor& demo_style, const torch::Tensor& negative,
                            const torch::Tensor& negative_style, const AmpConfig& config) {
   DiscLoss out;
-  const auto pos = disc->forward(demo, demo_style);
+  // One forward of the demo batch serves both the classification term and the penalty.
+  const auto x = demo.detach().requires_grad_(true);
+  const auto pos = disc->forward(x, demo_style);
   const auto neg = disc->forward(negative, negative_style);
   torch::Tensor cls;
   if (config.loss == "lsgan") {
@@ -24,7 +32,7 @@ DiscLoss DiscriminatorLoss(Discriminator& disc, const torch::Tensor& demo,
     cls = 0.5 * (torch::binary_cross_entropy_with_logits(pos, torch::ones_like(pos)) +
                  torch::binary_cross_entropy_with_logits(neg, torch::zeros_like(neg)));
   }
-  const auto gp = GradientPenalty(disc, demo, demo_style);
+  const auto gp = PenaltyOf(pos, x);
   out.total = cls + config.logit_reg * disc->LogitWeightNorm() + config.grad_penalty * gp +
               config.weight_decay * disc->WeightNorm();
   torch::NoGradGuard guard;

@@ -5,17 +5,17 @@
 namespace sims::learning {
 
 MotionDemoSource::MotionDemoSource(std::shared_ptr<const motion::MotionLibrary> library,
-                                   std::shared_ptr<const task::StyleTable> styles, int threads)
+                                   std::shared_ptr<const task::StyleTable> styles, int steps,
+                                   int threads)
     : library_(std::move(library)), threads_(threads) {
+  steps_ = steps > 0 ? steps : library_->options().amp_steps;
   if (styles) z_ = styles->all();
 }
 
-int MotionDemoSource::amp_obs_dim() const {
-  return library_->options().amp_steps * sim::kAmpObsStepDim;
-}
+int MotionDemoSource::amp_obs_dim() const { return steps_ * sim::kAmpObsStepDim; }
 
 void MotionDemoSource::Sample(int n, Rng& rng, float* amp_out, int* style_out) const {
-  library_->SampleAmpDemos(rng, n, amp_out, style_out, threads_);
+  library_->SampleAmpDemos(rng, n, amp_out, style_out, threads_, steps_);
 }
 
 }  // namespace sims::learning

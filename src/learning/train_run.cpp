@@ -1,5 +1,6 @@
 #include "sims/learning/train_run.h"
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -24,16 +25,17 @@ namespace {
 
 const std::vector<std::string>& CsvColumns() {
   static const std::vector<std::string> cols = {
-      "iteration",      "samples",          "task_reward",       "style_reward",
-      "total_reward",   "episode_return",   "episode_length",    "episodes",
-      "success_rate",   "fall_rate",        "actor_loss",        "critic_loss",
-      "bounds_loss",    "disc_loss",        "grad_penalty",      "disc_acc_demo",
-      "disc_acc_agent", "clip_fraction",    "env_samples_per_s", "train_samples_per_s",
-      "update_gflops",  "iteration_seconds"};
+      "iteration",         "samples",           "task_reward",       "style_reward",
+      "total_reward",      "episode_return",    "episode_length",    "episodes",
+      "success_rate",      "fall_rate",         "actor_loss",        "critic_loss",
+      "bounds_loss",       "disc_loss",         "grad_penalty",      "disc_acc_demo",
+      "disc_acc_agent",    "clip_fraction",     "env_samples_per_s", "train_samples_per_s",
+      "update_gflops",     "iteration_seconds", "samples_per_s",     "env_seconds",
+      "inference_seconds", "disc_seconds",      "ppo_seconds",       "logging_seconds"};
   return cols;
 }
 
-std::string CsvRow(const IterationStats& s) {
+std::string CsvRow(const IterationStats& s, const IterationTiming& timing) {
   const double v[] = {static_cast<double>(s.iteration),
                       static_cast<double>(s.samples),
                       s.task_reward,
@@ -55,27 +57,54 @@ std::string CsvRow(const IterationStats& s) {
                       s.env_samples_per_s,
                       s.train_samples_per_s,
                       s.update_gflop / std::max(s.update_seconds, 1e-9),
-                      s.iteration_seconds};
+                      s.iteration_seconds,
+                      timing.samples_per_s,
+                      s.env_seconds,
+                      s.inference_seconds,
+                      s.disc_seconds,
+                      s.ppo_seconds,
+                      timing.logging_seconds};
   std::ostringstream out;
   out.precision(7);
   for (size_t i = 0; i < std::size(v); ++i) out << (i ? "," : "") << v[i];
   return out.str();
 }
 
+std::string CsvHeader() {
+  std::string header;
+  for (const auto& c : CsvColumns()) header += (header.empty() ? "" : ",") + c;
+  return header;
+}
+
 // After a crash the log may hold rows past the last checkpoint; drop them so the resumed run
-// appends exactly once per iteration.
+// appends exactly once per iteration. A log of an older layout (fewer trailing columns) gets
+// the current header; its short rows read as missing values.
 void TruncateLog(const std::filesystem::path& csv, int64_t last_iteration) {
   std::ifstream in(csv);
   if (!in) return;
   std::string line, kept;
   bool header = true;
+  int64_t lineno = 0;
   while (std::getline(in, line)) {
+    ++lineno;
     if (header) {
-      kept += line + "\n";
+      const std::string current = CsvHeader();
+      if (current.compare(0, line.size(), line) != 0)
+        ThrowInputError(csv.string(), "line 1", "the train_policy log header (" + current + ")",
+                        line);
+      kept += current + "\n";
       header = false;
       continue;
     }
-    if (std::stoll(line.substr(0, line.find(','))) <= last_iteration) kept += line + "\n";
+    if (line.empty()) continue;
+    int64_t iteration = 0;
+    try {
+      iteration = std::stoll(line.substr(0, line.find(',')));
+    } catch (const std::exception&) {
+      ThrowInputError(csv.string(), "line " + std::to_string(lineno) + ", column iteration",
+                      "an integer", line.substr(0, line.find(',')));
+    }
+    if (iteration <= last_iteration) kept += line + "\n";
   }
   WriteFileAtomic(csv, kept);
 }
@@ -128,7 +157,8 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
       ThrowInputError(config_path.string(), "skill.motion.manifest",
                       "a motion manifest when learner.amp.enabled is true", "none");
     demo = std::make_shared<MotionDemoSource>(
-        setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr);
+        setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr,
+        config.env.amp_history);
   }
   Trainer trainer(vec, demo, config.learner);
   if (options.resume) {
@@ -148,9 +178,7 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
       spdlog::info("warm start from {} (iteration {})", options.init_from.string(),
                    trainer.iteration());
     }
-    std::string header;
-    for (const auto& c : CsvColumns()) header += (header.empty() ? "" : ",") + c;
-    WriteFileAtomic(csv_path, header + "\n");
+    WriteFileAtomic(csv_path, CsvHeader() + "\n");
   }
   const nlohmann::json extra = {{"skill", ConfigToJson(config.skill)},
                                 {"env", ConfigToJson(config.env)}};
@@ -164,24 +192,35 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
                             trainer.iteration());
   const int64_t start = trainer.iteration();
   std::ofstream csv(csv_path, std::ios::app);
-  int64_t samples_at_start = -1;  // samples/s counts this process only (resume-safe)
+  const double batch =
+      static_cast<double>(config.learner.ppo.horizon) * static_cast<double>(config.env.num_envs);
+  // samples/s as a user feels it: each row's interval runs from the end of the previous
+  // iteration's update to the end of this one, so it holds the previous row's logging and
+  // checkpoint too.
+  auto last_end = std::chrono::steady_clock::now();
+  double logging_s = 0;
   for (int64_t it = start; it < config.iterations; ++it) {
     const IterationStats s = trainer.RunIteration();
-    if (samples_at_start < 0)
-      samples_at_start =
-          s.samples - static_cast<int64_t>(config.learner.ppo.horizon) * config.env.num_envs;
-    csv << CsvRow(s) << "\n";
+    const auto end = std::chrono::steady_clock::now();
+    IterationTiming timing;
+    timing.interval_seconds = std::chrono::duration<double>(end - last_end).count();
+    timing.logging_seconds = logging_s;
+    timing.samples_per_s = batch / std::max(timing.interval_seconds, 1e-9);
+    last_end = end;
+    csv << CsvRow(s, timing) << "\n";
     csv.flush();
     char extra_text[200];
     std::snprintf(
         extra_text, sizeof(extra_text),
-        "reward %.3f (task %.3f style %.3f) success %.2f falls %.2f ep_len %.0f, %.0f samples/s",
+        "reward %.3f (task %.3f style %.3f) success %.2f falls %.2f ep_len %.0f, %.0f samples/s "
+        "(mean %.0f)",
         s.total_reward, s.task_reward, s.style_reward, s.success_rate, s.fall_rate,
-        s.episode_length,
-        static_cast<double>(s.samples - samples_at_start) /
-            std::max(progress.ElapsedSeconds(), 1e-9));
+        s.episode_length, timing.samples_per_s,
+        batch * static_cast<double>(it + 1 - start) / std::max(progress.ElapsedSeconds(), 1e-9));
     progress.Update(it + 1, extra_text);
     if ((it + 1) % config.checkpoint_every == 0) save_all();
+    logging_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - end).count();
+    if (options.on_iteration) options.on_iteration(s, timing);
   }
   save_all();
   progress.Finish();

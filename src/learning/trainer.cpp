@@ -1,7 +1,10 @@
 #include "sims/learning/trainer.h"
 
+#include <malloc.h>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <numeric>
 
@@ -24,8 +27,13 @@ double Since(Clock::time_point t) {
 }
 
 // Debian's libtorch starts with one intra-op thread; follow the project's Parallelism setting.
+// glibc serves the update's MiB-sized temporaries with fresh mmap()s and trims the heap after
+// each free, so every minibatch paid page faults on all its activations (perf: ~14 % of a sit
+// training run in the kernel); keeping freed memory in the process removes that.
 void BindTorchThreads() {
   static const bool once = [] {
+    mallopt(M_MMAP_THRESHOLD, 256 << 20);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
     AddThreadCountListener([](int n) { torch::set_num_threads(n); });
     return true;
   }();
@@ -34,13 +42,6 @@ void BindTorchThreads() {
 
 torch::Tensor FromBuffer(const float* data, std::vector<int64_t> shape) {
   return torch::from_blob(const_cast<float*>(data), shape, torch::kFloat32).clone();
-}
-
-torch::Tensor Randn(Rng& rng, int64_t rows, int64_t cols) {
-  auto t = torch::empty({rows, cols}, torch::kFloat32);
-  float* p = t.data_ptr<float>();
-  for (int64_t i = 0; i < rows * cols; ++i) p[i] = static_cast<float>(rng.Normal());
-  return t;
 }
 
 torch::Tensor Permutation(Rng& rng, int64_t n) {
@@ -95,9 +96,28 @@ struct Trainer::Impl {
   }
 
   // Values in return units (de-normalised when the critic is normalised).
-  torch::Tensor Values(const torch::Tensor& obs) {
-    const auto v = ac->Value(obs_norm->Normalize(obs), obs);
+  torch::Tensor ValuesOf(const torch::Tensor& normalised, const torch::Tensor& obs) {
+    const auto v = ac->Value(normalised, obs);
     return cfg.ppo.normalize_value ? value_norm->Denormalize(v.unsqueeze(-1)).squeeze(-1) : v;
+  }
+
+  // Rollout buffers, allocated once: the batch shape never changes within a run.
+  torch::Tensor obs_buf, last_obs, act_buf, logp_buf, val_buf, rew_buf, done_buf, boot_buf, amp_buf,
+      style_buf;
+  void AllocateRollout(int64_t T) {
+    if (obs_buf.defined()) return;
+    obs_buf = torch::empty({T, n, obs_dim});
+    last_obs = torch::empty({n, obs_dim});
+    act_buf = torch::empty({T, n, act_dim});
+    logp_buf = torch::empty({T, n});
+    val_buf = torch::empty({T + 1, n});
+    rew_buf = torch::empty({T, n});
+    done_buf = torch::empty({T, n});
+    boot_buf = torch::zeros({T, n});
+    if (use_amp) {
+      amp_buf = torch::empty({T, n, amp_dim});
+      style_buf = torch::zeros({T, n}, torch::kInt64);
+    }
   }
 };
 
@@ -177,62 +197,81 @@ IterationStats Trainer::RunIteration() {
   auto& m = *impl_;
   const auto& ppo = m.cfg.ppo;
   const auto& ampc = m.cfg.amp;
-  const int64_t T = ppo.horizon, N = m.n, D = m.obs_dim, A = m.act_dim;
+  const int64_t T = ppo.horizon, N = m.n, D = m.obs_dim, A = m.act_dim, W = m.amp_dim;
   IterationStats st;
   const auto t_iter = Clock::now();
-
-  auto obs_buf = torch::empty({T, N, D});
-  auto act_buf = torch::empty({T, N, A});
-  auto logp_buf = torch::empty({T, N});
-  auto val_buf = torch::empty({T + 1, N});
-  auto rew_buf = torch::empty({T, N});
-  auto done_buf = torch::empty({T, N});
-  auto boot_buf = torch::zeros({T, N});  // V(terminal) for time-outs, 0 for terminations
-  torch::Tensor amp_buf, style_buf;
-  if (m.use_amp) {
-    amp_buf = torch::empty({T, N, m.amp_dim});
-    style_buf = torch::zeros({T, N}, torch::kInt64);
-  }
-  const double sigma = std::exp(m.ac->log_std());
+  m.AllocateRollout(T);
+  float* obs_p = m.obs_buf.data_ptr<float>();
+  float* act_p = m.act_buf.data_ptr<float>();
+  float* logp_p = m.logp_buf.data_ptr<float>();
+  float* val_p = m.val_buf.data_ptr<float>();
+  float* rew_p = m.rew_buf.data_ptr<float>();
+  float* done_p = m.done_buf.data_ptr<float>();
+  float* boot_p = m.boot_buf.data_ptr<float>();
+  std::fill(boot_p, boot_p + T * N, 0.0f);  // V(terminal) for time-outs, 0 for terminations
+  const float sigma = static_cast<float>(std::exp(m.ac->log_std()));
+  const double logp_const = static_cast<double>(A) * (m.ac->log_std() + 0.5 * std::log(2.0 * M_PI));
+  const double inv_var = std::exp(-2.0 * m.ac->log_std());
   double ret_sum = 0, len_sum = 0, succ_sum = 0, fall_sum = 0;
   int64_t episodes = 0;
 
   // ---- rollout -----------------------------------------------------------------------------
+  // Buffers are written through raw pointers and the networks run in inference mode: per step
+  // the learner adds a handful of tensor ops to the environment step, no autograd records.
   const auto t_collect = Clock::now();
+  double env_s = 0;
   {
-    torch::NoGradGuard guard;
-    auto obs = FromBuffer(m.env->observations(), {N, D});
+    torch::InferenceMode guard;
+    std::memcpy(obs_p, m.env->observations(), sizeof(float) * N * D);
     for (int64_t t = 0; t < T; ++t) {
-      obs_buf[t] = obs;
-      const auto mu = m.ac->Mean(m.obs_norm->Normalize(obs), obs);
-      val_buf[t] = m.Values(obs);
-      const auto a = (mu + sigma * Randn(m.rng, N, A)).contiguous();
-      act_buf[t] = a;
-      logp_buf[t] = GaussianLogProb(a, mu, m.ac->log_std());
+      float* o_t = obs_p + t * N * D;
+      const auto obs = torch::from_blob(o_t, {N, D});
+      const auto norm = m.obs_norm->Normalize(obs);
+      const auto mu = m.ac->Mean(norm, obs).contiguous();
+      const auto v = m.ValuesOf(norm, obs).contiguous();
+      std::memcpy(val_p + t * N, v.data_ptr<float>(), sizeof(float) * N);
+      const float* mu_p = mu.data_ptr<float>();
+      float* a_t = act_p + t * N * A;
+      for (int64_t i = 0; i < N; ++i) {
+        double sq = 0;
+        for (int64_t k = 0; k < A; ++k) {
+          const int64_t j = i * A + k;
+          a_t[j] = mu_p[j] + sigma * static_cast<float>(m.rng.Normal());
+          const double d = static_cast<double>(a_t[j]) - mu_p[j];
+          sq += d * d;
+        }
+        logp_p[t * N + i] = static_cast<float>(-0.5 * sq * inv_var - logp_const);
+      }
       if (m.use_amp && m.style_dim > 0 && m.env->style_ids()) {
         const int* ids = m.env->style_ids();
-        for (int64_t i = 0; i < N; ++i) style_buf[t][i] = ids[i];
+        int64_t* s_t = m.style_buf.data_ptr<int64_t>() + t * N;
+        for (int64_t i = 0; i < N; ++i) s_t[i] = ids[i];
       }
-      m.env->Step(a.data_ptr<float>());
+      const auto t_env = Clock::now();
+      m.env->Step(a_t);
+      env_s += Since(t_env);
       const float* r = m.env->rewards();
       const uint8_t* done = m.env->dones();
       const uint8_t* term = m.env->terminated();
       const uint8_t* succ = m.env->successes();
-      rew_buf[t] = FromBuffer(r, {N});
-      std::vector<float> d(N);
+      std::memcpy(rew_p + t * N, r, sizeof(float) * N);
       std::vector<int64_t> timeouts;
       for (int64_t i = 0; i < N; ++i) {
-        d[i] = done[i] ? 1.0f : 0.0f;
+        done_p[t * N + i] = done[i] ? 1.0f : 0.0f;
         if (done[i] && !term[i]) timeouts.push_back(i);
       }
-      done_buf[t] = torch::tensor(d);
       if (!timeouts.empty()) {
         const auto idx = torch::tensor(timeouts, torch::kInt64);
         const auto term_obs =
-            FromBuffer(m.env->terminal_observations(), {N, D}).index_select(0, idx);
-        boot_buf[t].index_copy_(0, idx, m.Values(term_obs));
+            torch::from_blob(const_cast<float*>(m.env->terminal_observations()), {N, D})
+                .index_select(0, idx);
+        const auto tv = m.ValuesOf(m.obs_norm->Normalize(term_obs), term_obs).contiguous();
+        for (size_t k = 0; k < timeouts.size(); ++k)
+          boot_p[t * N + timeouts[k]] = tv.data_ptr<float>()[k];
       }
-      if (m.use_amp) amp_buf[t] = FromBuffer(m.env->amp_observations(), {N, m.amp_dim});
+      if (m.use_amp)
+        std::memcpy(m.amp_buf.data_ptr<float>() + t * N * W, m.env->amp_observations(),
+                    sizeof(float) * N * W);
       // Episode bookkeeping uses the task reward; the style part is added after the rollout.
       for (int64_t i = 0; i < N; ++i) {
         m.ep_return[i] += r[i];
@@ -248,42 +287,59 @@ IterationStats Trainer::RunIteration() {
           m.ep_success[i] = 0;
         }
       }
-      obs = FromBuffer(m.env->observations(), {N, D});
+      float* next = t + 1 < T ? o_t + N * D : m.last_obs.data_ptr<float>();
+      std::memcpy(next, m.env->observations(), sizeof(float) * N * D);
     }
-    val_buf[T] = m.Values(obs);
+    const auto v = m.ValuesOf(m.obs_norm->Normalize(m.last_obs), m.last_obs).contiguous();
+    std::memcpy(val_p + T * N, v.data_ptr<float>(), sizeof(float) * N);
   }
   const double collect_s = Since(t_collect);
   m.samples += T * N;
+  const auto& obs_buf = m.obs_buf;
+  const auto& rew_buf = m.rew_buf;
 
-  // ---- rewards, advantages -----------------------------------------------------------------
+  // ---- style rewards (discriminator), advantages -------------------------------------------
+  double disc_s = 0, ppo_s = 0;
+  auto t_phase = Clock::now();
   torch::Tensor style_rew = torch::zeros({T, N});
-  torch::Tensor amp_flat, style_flat;
+  torch::Tensor amp_flat, style_flat, amp_flat_norm;
   if (m.use_amp) {
     torch::NoGradGuard guard;
-    amp_flat = amp_buf.reshape({T * N, m.amp_dim});
-    style_flat = style_buf.reshape({T * N});
-    const auto logits = m.disc->forward(m.amp_norm->Normalize(amp_flat), m.StyleOf(style_flat));
+    amp_flat = m.amp_buf.reshape({T * N, W});
+    style_flat = m.style_buf.reshape({T * N});
+    // amp_norm changes only after the update, so the policy windows are normalised once.
+    amp_flat_norm = m.amp_norm->Normalize(amp_flat);
+    const auto logits = m.disc->forward(amp_flat_norm, m.StyleOf(style_flat));
     style_rew = StyleReward(logits, ampc).reshape({T, N});
+    disc_s += Since(t_phase);
+    t_phase = Clock::now();
   }
-  const auto reward =
-      m.use_amp ? ampc.task_weight * rew_buf + ampc.style_weight * style_rew : rew_buf;
-  auto next_val = val_buf.slice(0, 1, T + 1).clone();
-  next_val = torch::where(done_buf > 0.5, boot_buf, next_val);
-  const auto values = val_buf.slice(0, 0, T);
-  const auto adv = ComputeGae(reward, values, next_val, done_buf, ppo.gamma, ppo.lambda);
-  const auto returns = adv + values;
-  if (ppo.normalize_value) m.value_norm->Update(returns.reshape({-1, 1}));
-
-  auto obs_f = obs_buf.reshape({T * N, D});
-  auto act_f = act_buf.reshape({T * N, A});
-  auto logp_f = logp_buf.reshape({T * N});
-  auto ret_f = returns.reshape({T * N});
-  auto adv_f = adv.reshape({T * N});
-  if (ppo.normalize_advantage) adv_f = (adv_f - adv_f.mean()) / (adv_f.std() + 1e-8);
-  const auto ret_target =
-      ppo.normalize_value ? m.value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
+  torch::Tensor reward, adv, ret_target, obs_f, norm_obs_f, act_f, logp_f, adv_f;
+  {
+    torch::NoGradGuard guard;
+    reward = m.use_amp ? ampc.task_weight * rew_buf + ampc.style_weight * style_rew : rew_buf;
+    auto next_val = m.val_buf.slice(0, 1, T + 1).clone();
+    next_val = torch::where(m.done_buf > 0.5, m.boot_buf, next_val);
+    const auto values = m.val_buf.slice(0, 0, T);
+    adv = ComputeGae(reward, values, next_val, m.done_buf, ppo.gamma, ppo.lambda);
+    const auto returns = adv + values;
+    if (ppo.normalize_value) m.value_norm->Update(returns.reshape({-1, 1}));
+    obs_f = obs_buf.reshape({T * N, D});
+    // obs_norm changes only after the update: normalise the whole batch once.
+    norm_obs_f = m.obs_norm->Normalize(obs_f);
+    act_f = m.act_buf.reshape({T * N, A});
+    logp_f = m.logp_buf.reshape({T * N});
+    const auto ret_f = returns.reshape({T * N});
+    adv_f = adv.reshape({T * N});
+    if (ppo.normalize_advantage) adv_f = (adv_f - adv_f.mean()) / (adv_f.std() + 1e-8);
+    ret_target =
+        ppo.normalize_value ? m.value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
+  }
+  ppo_s += Since(t_phase);
 
   // ---- update ------------------------------------------------------------------------------
+  // The PPO and discriminator losses share no parameters: two backward passes give the same
+  // gradients as one on their sum, and let the benchmark time each network's share.
   const auto t_update = Clock::now();
   const int64_t total = T * N;
   const int64_t mb = std::min<int64_t>(ppo.minibatch_size, total);
@@ -294,9 +350,10 @@ IterationStats Trainer::RunIteration() {
   for (int epoch = 0; epoch < ppo.mini_epochs; ++epoch) {
     const auto perm = Permutation(m.rng, total);
     for (int64_t k = 0; k < n_mb; ++k) {
+      t_phase = Clock::now();
       const auto idx = perm.slice(0, k * mb, (k + 1) * mb);
       const auto o = obs_f.index_select(0, idx);
-      const auto norm_o = m.obs_norm->Normalize(o);
+      const auto norm_o = norm_obs_f.index_select(0, idx);
       const auto mu = m.ac->Mean(norm_o, o);
       const auto v = m.ac->Value(norm_o, o);
       const auto logp = GaussianLogProb(act_f.index_select(0, idx), mu, m.ac->log_std());
@@ -304,51 +361,55 @@ IterationStats Trainer::RunIteration() {
       const auto actor = ClippedSurrogateLoss(logp, old_logp, adv_f.index_select(0, idx), ppo.clip);
       const auto critic = (v - ret_target.index_select(0, idx)).pow(2).mean();
       const auto bounds = BoundsLoss(mu);
-      auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
+      const auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
+      m.optim->zero_grad();
+      loss.backward();
+      a_loss += actor.item<double>();
+      c_loss += critic.item<double>();
+      b_loss += bounds.item<double>();
+      clipf += ClipFraction(logp.detach(), old_logp, ppo.clip);
+      ppo_s += Since(t_phase);
       if (m.use_amp) {
+        t_phase = Clock::now();
         const int64_t na = std::min<int64_t>(ampc.batch_size, mb);
         const auto agent_idx = idx.slice(0, 0, na);
-        auto neg = amp_flat.index_select(0, agent_idx);
+        auto neg = amp_flat_norm.index_select(0, agent_idx);
         auto neg_style = style_flat.index_select(0, agent_idx);
         if (m.replay->size() > 0) {
           auto [rep, rep_style] = m.replay->Sample(na, m.rng);
-          neg = torch::cat({neg, rep});
+          neg = torch::cat({neg, m.amp_norm->Normalize(rep)});
           neg_style = torch::cat({neg_style, rep_style});
         }
         std::vector<int64_t> demo_idx(na);
         for (auto& i : demo_idx) i = m.rng.UniformInt(m.demo_pool.size(0));
         const auto di = torch::tensor(demo_idx, torch::kInt64);
-        auto pos = m.demo_pool.index_select(0, di);
-        auto pos_style = m.demo_pool_styles.index_select(0, di);
+        const auto pos = m.amp_norm->Normalize(m.demo_pool.index_select(0, di));
+        const auto pos_style = m.demo_pool_styles.index_select(0, di);
         if (m.style_dim > 0 && ampc.mismatch_fraction > 0 && m.style_table.size(0) > 1) {
           // SIMS conditional negatives: real motion paired with another clip's embedding.
           const int64_t nm = static_cast<int64_t>(ampc.mismatch_fraction * na);
           std::vector<int64_t> wrong(nm);
           const int64_t s = m.style_table.size(0);
-          for (int64_t i = 0; i < nm; ++i) {
-            const int64_t true_id = pos_style[i].item<int64_t>();
-            wrong[i] = (true_id + 1 + m.rng.UniformInt(s - 1)) % s;
-          }
+          const int64_t* true_ids = pos_style.data_ptr<int64_t>();
+          for (int64_t i = 0; i < nm; ++i)
+            wrong[i] = (true_ids[i] + 1 + m.rng.UniformInt(s - 1)) % s;
           neg = torch::cat({neg, pos.slice(0, 0, nm)});
           neg_style = torch::cat({neg_style, torch::tensor(wrong, torch::kInt64)});
         }
-        const auto dl = DiscriminatorLoss(m.disc, m.amp_norm->Normalize(pos), m.StyleOf(pos_style),
-                                          m.amp_norm->Normalize(neg), m.StyleOf(neg_style), ampc);
-        loss = loss + ampc.disc_coef * dl.total;
+        const auto dl =
+            DiscriminatorLoss(m.disc, pos, m.StyleOf(pos_style), neg, m.StyleOf(neg_style), ampc);
+        (ampc.disc_coef * dl.total).backward();
         d_loss += dl.classification;
         gp += dl.grad_penalty;
         acc_d += dl.demo_accuracy;
         acc_a += dl.agent_accuracy;
         disc_samples += pos.size(0) + neg.size(0);
+        disc_s += Since(t_phase);
       }
-      m.optim->zero_grad();
-      loss.backward();
+      t_phase = Clock::now();
       if (ppo.grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, ppo.grad_norm);
       m.optim->step();
-      a_loss += actor.item<double>();
-      c_loss += critic.item<double>();
-      b_loss += bounds.item<double>();
-      clipf += ClipFraction(logp.detach(), old_logp, ppo.clip);
+      ppo_s += Since(t_phase);
       ++steps;
     }
   }
@@ -390,6 +451,10 @@ IterationStats Trainer::RunIteration() {
   const double disc_flop =
       m.use_amp ? 6.0 * LinearMacs(*m.disc) * static_cast<double>(disc_samples) * 1.5 : 0.0;
   st.update_gflop = (ac_flop + disc_flop) * 1e-9;
+  st.env_seconds = env_s;
+  st.inference_seconds = collect_s - env_s;
+  st.disc_seconds = disc_s;
+  st.ppo_seconds = ppo_s;
   st.iteration_seconds = Since(t_iter);
   return st;
 }
@@ -599,7 +664,7 @@ std::vector<float> Trainer::FlatParameters() const {
 }
 
 void Trainer::ActMean(const float* obs, int n, float* actions) const {
-  torch::NoGradGuard guard;
+  torch::InferenceMode guard;
   const auto o = FromBuffer(obs, {n, impl_->obs_dim});
   const auto mu = impl_->ac->Mean(impl_->obs_norm->Normalize(o), o).contiguous();
   std::memcpy(actions, mu.data_ptr<float>(), sizeof(float) * n * impl_->act_dim);
@@ -647,7 +712,7 @@ int Policy::action_dim() const { return impl_->action_dim; }
 const std::string& Policy::metadata_json() const { return impl_->metadata; }
 
 void Policy::Act(const float* obs, int n, float* actions) const {
-  torch::NoGradGuard guard;
+  torch::InferenceMode guard;
   const auto o = FromBuffer(obs, {n, impl_->obs_dim});
   const auto mu = impl_->ac->Mean(impl_->obs_norm->Normalize(o), o).contiguous();
   std::memcpy(actions, mu.data_ptr<float>(), sizeof(float) * n * impl_->action_dim);

@@ -144,30 +144,33 @@ void MotionLibrary::AmpObservation(int clip, double t, mjData* scratch, float* o
   sim::ComputeAmpObservation(pose, bodies, obs_options(), out);
 }
 
-void MotionLibrary::AmpWindow(int clip, double t, mjData* scratch, float* out) const {
-  for (int k = 0; k < options_.amp_steps; ++k)
+void MotionLibrary::AmpWindow(int clip, double t, mjData* scratch, float* out, int steps) const {
+  if (steps <= 0) steps = options_.amp_steps;
+  for (int k = 0; k < steps; ++k)
     AmpObservation(clip, std::max(t - k * options_.control_dt, 0.0), scratch,
                    out + static_cast<std::size_t>(k) * sim::kAmpObsStepDim);
 }
 
-void MotionLibrary::SampleAmpDemos(Rng& rng, int count, float* out, int* clip_ids,
-                                   int threads) const {
+void MotionLibrary::SampleAmpDemos(Rng& rng, int count, float* out, int* clip_ids, int threads,
+                                   int steps) const {
+  if (steps <= 0) steps = options_.amp_steps;
   // Draw every (clip, time) first so the result does not depend on the thread count.
   std::vector<int> ids(count);
   std::vector<double> times(count);
-  const double span = (options_.amp_steps - 1) * options_.control_dt;
+  const double span = (steps - 1) * options_.control_dt;
   for (int i = 0; i < count; ++i) {
     ids[i] = SampleClip(rng);
     const double len = clips_[ids[i]].duration();
     times[i] = len > span ? rng.Uniform(span, len) : rng.Uniform() * len;
   }
-  const std::size_t width = static_cast<std::size_t>(options_.amp_steps) * sim::kAmpObsStepDim;
+  const std::size_t width = static_cast<std::size_t>(steps) * sim::kAmpObsStepDim;
   threads = std::max(1, threads);
 #pragma omp parallel num_threads(threads)
   {
     sim::MjDataPtr scratch = sim::MakeData(humanoid_->model());
 #pragma omp for schedule(static)
-    for (int i = 0; i < count; ++i) AmpWindow(ids[i], times[i], scratch.get(), out + i * width);
+    for (int i = 0; i < count; ++i)
+      AmpWindow(ids[i], times[i], scratch.get(), out + i * width, steps);
   }
   if (clip_ids) std::copy(ids.begin(), ids.end(), clip_ids);
 }

@@ -82,6 +82,29 @@ double EnvPhysicsStepsPerSecond(const std::shared_ptr<const Humanoid>& h, const 
 
 }  // namespace
 
+double RawStepsPerSecondFrom(BatchedEnv& env, int threads, int control_steps, int repeats) {
+  const mjModel* m = env.humanoid().model();
+  const int n = env.num_envs(), substeps = env.config().substeps;
+  std::vector<MjDataPtr> start, work;
+  for (int i = 0; i < n; ++i) {
+    start.push_back(MakeData(m));
+    work.push_back(MakeData(m));
+    mj_copyData(start.back().get(), m, env.data(i));
+  }
+  double best = 0;
+  for (int r = 0; r < repeats; ++r) {
+    for (int i = 0; i < n; ++i) mj_copyData(work[i].get(), m, start[i].get());
+    const auto t0 = Clock::now();
+    for (int t = 0; t < control_steps; ++t) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < substeps; ++k) mj_step(m, work[i].get());
+    }
+    best = std::max(best, static_cast<double>(control_steps) * n * substeps / Seconds(t0));
+  }
+  return best;
+}
+
 nlohmann::json RunEnvBenchmark(const EnvBenchOptions& o) {
   auto h = std::make_shared<const Humanoid>(BuildModel());
   const auto actions = MakeActions(*h, o.num_envs, o.control_steps, o.action_noise);

@@ -1,9 +1,12 @@
 #include "sims/sim/model_builder.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <memory>
 #include <sstream>
+
+#include <Eigen/Geometry>
 
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
@@ -72,30 +75,62 @@ std::string ReadTextFile(const std::filesystem::path& path) {
 
 std::string ComposeModelXml(const std::string& humanoid_xml, const StaticGeometry& geometry,
                             const std::string& source) {
+  // Geoms of one static body, in order of first appearance; "" holds the world's own geoms.
+  std::vector<std::string> bodies;
+  std::vector<std::vector<int>> members;
+  for (int i = 0; i < static_cast<int>(geometry.geoms.size()); ++i) {
+    const std::string& b = geometry.geoms[i].body;
+    const auto it = std::find(bodies.begin(), bodies.end(), b);
+    if (it == bodies.end()) {
+      bodies.push_back(b);
+      members.push_back({i});
+    } else {
+      members[it - bodies.begin()].push_back(i);
+    }
+  }
   std::ostringstream assets, geoms;
   assets.precision(9);
-  int index = 0;
-  for (const StaticGeom& g : geometry.geoms) {
-    const std::string name =
-        XmlEscape(g.name.empty() ? "scene_geom_" + std::to_string(index) : g.name);
-    const std::string common = " class=\"scene\" friction=\"" + std::to_string(g.friction) +
-                               " 0.05 0.05\" rgba=\"" + Rgba(g.rgba) + "\"";
-    if (g.type == StaticGeom::Type::kBox) {
-      const Eigen::Quaterniond q(g.X_WG.rotation());
-      geoms << "    <geom name=\"" << name << "\" type=\"box\" pos=\"" << Vec(g.X_WG.translation())
-            << "\" quat=\"" << q.w() << " " << q.x() << " " << q.y() << " " << q.z() << "\" size=\""
-            << Vec(g.half_size) << "\"" << common << "/>\n";
-    } else {
-      if (g.vertices.size() < 4)
-        ThrowInputError(source, "geom '" + name + "'", "a convex mesh with at least 4 points",
-                        std::to_string(g.vertices.size()) + " points");
-      assets << "    <mesh name=\"" << name << "_mesh\" vertex=\"";
-      for (const auto& v : g.vertices) assets << Vec(v) << " ";
-      assets << "\"/>\n";
-      geoms << "    <geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name << "_mesh\""
-            << common << "/>\n";
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    // A body sits at the centre of its geoms' extent so its bounding volume is tight; geoms
+    // and mesh points are written relative to it.
+    Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();
+    if (!bodies[k].empty()) {
+      Eigen::AlignedBox3d box;
+      for (int i : members[k]) {
+        const StaticGeom& g = geometry.geoms[i];
+        if (g.type == StaticGeom::Type::kBox)
+          box.extend(g.X_WG.translation());
+        else
+          for (const auto& v : g.vertices) box.extend(v);
+      }
+      p_WB = box.center();
+      geoms << "    <body name=\"" << XmlEscape(bodies[k]) << "\" pos=\"" << Vec(p_WB) << "\">\n";
     }
-    ++index;
+    const std::string indent = bodies[k].empty() ? "    " : "      ";
+    for (int i : members[k]) {
+      const StaticGeom& g = geometry.geoms[i];
+      const std::string name =
+          XmlEscape(g.name.empty() ? "scene_geom_" + std::to_string(i) : g.name);
+      const std::string common = " class=\"scene\" friction=\"" + std::to_string(g.friction) +
+                                 " 0.05 0.05\" rgba=\"" + Rgba(g.rgba) + "\"";
+      if (g.type == StaticGeom::Type::kBox) {
+        const Eigen::Quaterniond q(g.X_WG.rotation());
+        geoms << indent << "<geom name=\"" << name << "\" type=\"box\" pos=\""
+              << Vec(g.X_WG.translation() - p_WB) << "\" quat=\"" << q.w() << " " << q.x() << " "
+              << q.y() << " " << q.z() << "\" size=\"" << Vec(g.half_size) << "\"" << common
+              << "/>\n";
+      } else {
+        if (g.vertices.size() < 4)
+          ThrowInputError(source, "geom '" + name + "'", "a convex mesh with at least 4 points",
+                          std::to_string(g.vertices.size()) + " points");
+        assets << "    <mesh name=\"" << name << "_mesh\" vertex=\"";
+        for (const auto& v : g.vertices) assets << Vec(v - p_WB) << " ";
+        assets << "\"/>\n";
+        geoms << indent << "<geom name=\"" << name << "\" type=\"mesh\" mesh=\"" << name
+              << "_mesh\"" << common << "/>\n";
+      }
+    }
+    if (!bodies[k].empty()) geoms << "    </body>\n";
   }
   std::string xml = humanoid_xml;
   ReplaceMarker(&xml, "SIMS_SCENE_ASSETS", assets.str(), source);

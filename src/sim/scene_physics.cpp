@@ -200,6 +200,7 @@ StaticGeometry CompileSceneGeometry(const scene::Scene& scene, const ScenePhysic
           p.mesh, o.instance + "/" + p.name + "#" + std::to_string(p.id), options);
       for (auto& g : geoms) {
         g.rgba = CategoryColor(o.category);
+        g.body = "scene/" + o.instance;
         geometry.geoms.push_back(std::move(g));
       }
     }
@@ -207,6 +208,7 @@ StaticGeometry CompileSceneGeometry(const scene::Scene& scene, const ScenePhysic
   if (options.include_walls && !scene.walls.empty()) {
     for (auto& g : CompileMeshGeometry(scene.walls, "walls", options)) {
       g.rgba = CategoryColor("walls");
+      g.body = "scene/walls";
       geometry.geoms.push_back(std::move(g));
     }
   }

@@ -120,6 +120,15 @@ TEST(MotionLibraryTest, HistoryAndWindowOrder) {
     lib.AmpObservation(1, 1.0 - k / 30.0, d.get(), step.data());
     for (int i = 0; i < 125; ++i) ASSERT_EQ(window[k * 125 + i], step[i]) << k;
   }
+  // Shorter windows (an env with amp_history 2) are the first steps of the long one.
+  std::vector<float> pair(250);
+  lib.AmpWindow(1, 1.0, d.get(), pair.data(), 2);
+  for (int i = 0; i < 250; ++i) ASSERT_EQ(pair[i], window[i]) << i;
+  Rng demo_rng(4);
+  std::vector<float> demos(3 * 250);
+  std::vector<int> clips(3);
+  lib.SampleAmpDemos(demo_rng, 3, demos.data(), clips.data(), 1, 2);
+  for (int i = 0; i < 3; ++i) EXPECT_GE(clips[i], 0);
   const std::vector<float> feats = lib.ClipAmpFeatures(1);
   EXPECT_EQ(feats.size(), 60u * 125u);
   EXPECT_EQ(lib.Find("walk").size(), 1u);

@@ -129,7 +129,42 @@ TEST(ScenePhysicsTest, HouseCompilesIntoAMujocoModel) {
   EXPECT_EQ(wall_geoms, static_cast<int>(house.walls.triangles.size() / 12));
   const MjModelPtr model = BuildModel(geometry);
   const MjModelPtr bare = BuildModel({});
-  EXPECT_EQ(model->ngeom, static_cast<int>(geometry.geoms.size()) + bare->ngeom);
+  const mjModel* m = model.get();
+  EXPECT_EQ(m->ngeom, static_cast<int>(geometry.geoms.size()) + bare->ngeom);
+  // One static body per object plus one for the walls, so the broad phase can skip far
+  // furniture; every geom keeps its world pose (bodies sit at their geoms' centre).
+  int static_objects = 0;
+  for (const auto& o : house.objects) static_objects += o.is_static ? 1 : 0;
+  EXPECT_EQ(m->nbody, bare->nbody + static_objects + 1);
+  MjDataPtr data = MakeData(m);
+  mj_forward(m, data.get());
+  const mjData* d = data.get();
+  int meshes = 0;
+  for (const auto& g : geometry.geoms) {
+    const int id = mj_name2id(m, mjOBJ_GEOM, g.name.c_str());
+    ASSERT_GE(id, 0) << g.name;
+    const int body = m->geom_bodyid[id];
+    EXPECT_NE(body, 0) << g.name;
+    EXPECT_EQ(m->body_weldid[body], 0) << g.name << " must be static";
+    const Eigen::Map<const Eigen::Vector3d> p_WG(d->geom_xpos + 3 * id);
+    if (g.type == StaticGeom::Type::kBox) {
+      EXPECT_LT((p_WG - g.X_WG.translation()).norm(), 1e-6) << g.name;
+      continue;
+    }
+    // Convex meshes: MuJoCo re-centres the points; mapped back they are the compiled ones.
+    ++meshes;
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R_WG(d->geom_xmat +
+                                                                              9 * id);
+    const int mesh = m->geom_dataid[id];
+    for (int v = 0; v < m->mesh_vertnum[mesh]; ++v) {
+      const float* q = m->mesh_vert + 3 * (m->mesh_vertadr[mesh] + v);
+      const Vector3d p = p_WG + R_WG * Vector3d(q[0], q[1], q[2]);
+      double best = 1e9;
+      for (const auto& w : g.vertices) best = std::min(best, (w - p).norm());
+      EXPECT_LT(best, 1e-4) << g.name;
+    }
+  }
+  EXPECT_GT(meshes, 0);
 }
 
 // Drops the humanoid in a sitting pose (hips -90°, knees +90°, forearms forward) with its

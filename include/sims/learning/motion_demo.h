@@ -12,9 +12,10 @@ namespace sims::learning {
 /// Demo windows from a MotionLibrary (style id = clip index).
 class MotionDemoSource : public DemoSource {
  public:
-  /// `styles` may be null (unconditional AMP).
+  /// `styles` may be null (unconditional AMP); windows hold `steps` AMP observations (the
+  /// env's amp_history; 0 = the library's amp_steps).
   MotionDemoSource(std::shared_ptr<const motion::MotionLibrary> library,
-                   std::shared_ptr<const task::StyleTable> styles, int threads = 1);
+                   std::shared_ptr<const task::StyleTable> styles, int steps = 0, int threads = 1);
   int amp_obs_dim() const override;
   void Sample(int n, Rng& rng, float* amp_out, int* style_out) const override;
   const std::vector<Eigen::VectorXf>& style_embeddings() const override { return z_; }
@@ -22,6 +23,7 @@ class MotionDemoSource : public DemoSource {
  private:
   std::shared_ptr<const motion::MotionLibrary> library_;
   std::vector<Eigen::VectorXf> z_;
+  int steps_;
   int threads_;
 };
 

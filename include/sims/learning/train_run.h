@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 #include "sims/learning/config.h"
@@ -33,6 +34,13 @@ struct TrainConfig {
   void Validate() const;
 };
 
+/// Wall-clock figures of one training iteration as train_policy logs them.
+struct IterationTiming {
+  double interval_seconds = 0;  ///< End of the previous iteration's update to end of this one.
+  double logging_seconds = 0;   ///< Of that interval: the previous row, progress, checkpoint.
+  double samples_per_s = 0;     ///< Batch size / interval: the rate a user's run sees.
+};
+
 /// Command-line overrides.
 struct TrainOptions {
   std::filesystem::path out_dir = "runs/train";  ///< Outputs (config, log, checkpoints).
@@ -44,6 +52,8 @@ struct TrainOptions {
   std::filesystem::path init_from;
   /// Initialise actor, critic and normaliser from a policy file (e.g. walk for other skills).
   std::filesystem::path init_policy;
+  /// Called after each iteration is logged (benchmarks read the timing through it).
+  std::function<void(const IterationStats&, const IterationTiming&)> on_iteration;
 };
 
 /// The training configs train_policy stores in a policy's metadata ("extra").

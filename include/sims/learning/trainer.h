@@ -36,7 +36,11 @@ struct IterationStats {
   double env_samples_per_s = 0;    ///< Collection throughput (incl. policy inference).
   double train_samples_per_s = 0;  ///< Update throughput (samples × epochs / s).
   double update_gflop = 0;         ///< Estimated GFLOP spent in the update.
-  double update_seconds = 0;       ///< Time spent in the update.
+  double update_seconds = 0;       ///< Time spent in the update (PPO and discriminator).
+  double env_seconds = 0;          ///< Rollout time inside VecEnv::Step.
+  double inference_seconds = 0;    ///< Rollout time outside it (policy, value, buffers).
+  double disc_seconds = 0;         ///< Style rewards + discriminator loss forward/backward.
+  double ppo_seconds = 0;          ///< Advantages, PPO forward/backward, optimiser steps.
   double iteration_seconds = 0;    ///< Wall time of the iteration.
 };
 

@@ -131,12 +131,14 @@ class MotionLibrary {
   /// The 125-d AMP observation of clip `clip` at time t, via `scratch` (an mjData of the
   /// library's model).
   void AmpObservation(int clip, double t, mjData* scratch, float* out) const;
-  /// One AMP window [t, t−dt, …] (amp_steps × 125 values), times clamped at 0.
-  void AmpWindow(int clip, double t, mjData* scratch, float* out) const;
+  /// One AMP window [t, t−dt, …] (`steps` × 125 values; 0 = amp_steps), times clamped at 0.
+  void AmpWindow(int clip, double t, mjData* scratch, float* out, int steps = 0) const;
   /// `count` demo windows: clip by weight, t ~ U[(steps−1)·dt, duration] (U[0, duration] for
   /// shorter clips). Writes [count, steps·125] to `out` and the clip indices to `clips` (may
-  /// be null). Deterministic for a seed at any thread count.
-  void SampleAmpDemos(Rng& rng, int count, float* out, int* clips = nullptr, int threads = 1) const;
+  /// be null). `steps` is the window length (0 = amp_steps). Deterministic for a seed at any
+  /// thread count.
+  void SampleAmpDemos(Rng& rng, int count, float* out, int* clips = nullptr, int threads = 1,
+                      int steps = 0) const;
   /// Per-frame AMP observations of clip i resampled at `fps` ([frames, 125]).
   std::vector<float> ClipAmpFeatures(int clip, double fps = 30.0) const;
 

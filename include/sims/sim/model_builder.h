@@ -25,6 +25,9 @@ struct StaticGeom {
   std::vector<Eigen::Vector3d> vertices;                   ///< Convex mesh points (world).
   double friction = 1.0;                                   ///< Sliding friction.
   Eigen::Vector4f rgba{0.55f, 0.45f, 0.35f, 1.0f};         ///< Display colour.
+  /// Static body the geom is grouped into (one per object), empty = the world body. MuJoCo's
+  /// broad phase bounds bodies, so world geoms would all be tested against every limb.
+  std::string body;
 };
 
 /// The static part of a scene as MuJoCo sees it.

@@ -1,0 +1,150 @@
+#include "sims/learning/train_run.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "common/test_util.h"
+#include "sims/core/error.h"
+#include "sims/io/training_report.h"
+#include "sims/learning/bench.h"
+
+namespace sims::learning {
+namespace {
+
+// A walk run small enough for a unit test: two envs, four steps per iteration, no AMP.
+TrainConfig TinyWalk() {
+  TrainConfig c;
+  c.env.num_envs = 2;
+  c.env.threads = 1;
+  c.skill.skill = "walk";
+  c.learner.amp.enabled = false;
+  c.learner.network.actor_hidden = {16};
+  c.learner.network.critic_hidden = {16};
+  c.learner.network.heightmap_hidden = {8};
+  c.learner.ppo.horizon = 4;
+  c.learner.ppo.mini_epochs = 1;
+  c.learner.ppo.minibatch_size = 8;
+  c.checkpoint_every = 2;
+  c.iterations = 3;
+  return c;
+}
+
+std::vector<std::string> ReadLines(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+int Column(const io::CsvTable& t, const std::string& name) {
+  for (size_t i = 0; i < t.columns.size(); ++i)
+    if (t.columns[i] == name) return static_cast<int>(i);
+  ADD_FAILURE() << "no column " << name;
+  return 0;
+}
+
+// log.csv carries the end-to-end rate and the time split of every iteration, the same figures
+// the observer (bench_train) receives; the row after a checkpoint carries its logging time.
+TEST(TrainRunTest, LogsEndToEndRateAndTimeSplit) {
+  const auto dir = sims::testing::TempDir("train_run");
+  TrainOptions o;
+  o.out_dir = dir;
+  std::vector<IterationTiming> seen;
+  o.on_iteration = [&](const IterationStats& s, const IterationTiming& t) {
+    EXPECT_GT(s.env_seconds, 0);
+    EXPECT_GT(s.inference_seconds, 0);
+    EXPECT_GT(s.ppo_seconds, 0);
+    EXPECT_EQ(s.disc_seconds, 0);  // AMP off
+    EXPECT_LE(s.env_seconds + s.inference_seconds + s.ppo_seconds, s.iteration_seconds);
+    EXPECT_GE(t.interval_seconds, s.iteration_seconds);
+    EXPECT_NEAR(t.samples_per_s * t.interval_seconds, 8.0, 1e-9);
+    seen.push_back(t);
+  };
+  EXPECT_EQ(RunTraining(TinyWalk(), o), 3);
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0].logging_seconds, 0);
+  EXPECT_GT(seen[2].logging_seconds, 0);  // the checkpoint after iteration 2
+  const io::CsvTable t = io::ReadCsvTable(dir / "log.csv");
+  ASSERT_EQ(t.rows(), 3);
+  for (int r = 0; r < 3; ++r) {
+    EXPECT_NEAR(t.values[Column(t, "samples_per_s")][r], seen[r].samples_per_s,
+                1e-6 * seen[r].samples_per_s);
+    EXPECT_GT(t.values[Column(t, "env_seconds")][r], 0);
+    EXPECT_GT(t.values[Column(t, "ppo_seconds")][r], 0);
+  }
+  EXPECT_GT(t.values[Column(t, "logging_seconds")][2], 0);
+}
+
+// A run logged by an older train_policy (fewer trailing columns) resumes: the header becomes
+// the current one, old rows stay (their new cells read as missing); a corrupt row is one
+// project error naming the file.
+TEST(TrainRunTest, ResumeMigratesAnOlderLogAndRejectsBadRows) {
+  const auto dir = sims::testing::TempDir("train_run_resume");
+  TrainOptions o;
+  o.out_dir = dir;
+  TrainConfig c = TinyWalk();
+  c.iterations = 2;
+  RunTraining(c, o);
+  auto lines = ReadLines(dir / "log.csv");
+  ASSERT_EQ(lines.size(), 3u);
+  const auto cut = [](const std::string& line, int cells) {
+    size_t pos = 0;
+    for (int k = 0; k < cells; ++k) pos = line.find(',', pos) + 1;
+    return line.substr(0, pos - 1);
+  };
+  {
+    std::ofstream out(dir / "log.csv");
+    for (const auto& l : lines) out << cut(l, 22) << "\n";  // the layout before samples_per_s
+  }
+  o.resume = true;
+  o.iterations = 3;
+  EXPECT_EQ(RunTraining(c, o), 3);
+  const auto migrated = ReadLines(dir / "log.csv");
+  ASSERT_EQ(migrated.size(), 4u);
+  EXPECT_EQ(migrated[0], lines[0]);
+  const io::CsvTable t = io::ReadCsvTable(dir / "log.csv");
+  EXPECT_TRUE(std::isnan(t.values[Column(t, "samples_per_s")][0]));
+  EXPECT_GT(t.values[Column(t, "samples_per_s")][2], 0);
+
+  {
+    std::ofstream out(dir / "log.csv");
+    out << lines[0] << "\nnot-a-number,1,2\n";
+  }
+  o.iterations = 4;
+  try {
+    RunTraining(c, o);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("log.csv"), std::string::npos) << what;
+    EXPECT_NE(what.find("iteration"), std::string::npos) << what;
+  }
+}
+
+// bench_train's figure: real iterations through RunTraining, a time split that adds up, and
+// references measured in the same run.
+TEST(TrainRunTest, TrainBenchmarkReportsEndToEndRate) {
+  const auto dir = sims::testing::TempDir("bench_train");
+  TrainConfig c = TinyWalk();
+  SaveConfig(dir / "tiny.json", c);
+  TrainBenchOptions o;
+  o.config = dir / "tiny.json";
+  o.iterations = 2;
+  o.warmup = 1;
+  const auto r = RunTrainBenchmark(o);
+  EXPECT_EQ(r.at("samples").get<int64_t>(), 2 * 4 * 2);
+  EXPECT_GT(r.at("samples_per_s").get<double>(), 0);
+  EXPECT_NEAR(r.at("samples_per_s").get<double>() * r.at("wall_seconds").get<double>(), 16.0, 1e-6);
+  double total = 0;
+  for (const auto& [k, v] : r.at("time_share").items()) total += v.get<double>();
+  EXPECT_NEAR(total, 1.0, 1e-9);
+  EXPECT_GT(r.at("raw_mj_step_per_s").get<double>(), 0);
+  EXPECT_GT(r.at("sgemm_gflops").get<double>(), 0);
+  EXPECT_GT(r.at("env_vs_raw").get<double>(), 0);
+}
+
+}  // namespace
+}  // namespace sims::learning
