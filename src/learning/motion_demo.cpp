@@ -7,8 +7,9 @@ namespace sims::learning {
 MotionDemoSource::MotionDemoSource(std::shared_ptr<const motion::MotionLibrary> library,
                                    std::shared_ptr<const task::StyleTable> styles, int steps,
                                    int threads)
-    : library_(std::move(library)), threads_(threads) {
-  steps_ = steps > 0 ? steps : library_->options().amp_steps;
+    : library_(std::move(library)),
+      steps_(steps > 0 ? steps : library_->options().amp_steps),
+      threads_(threads) {
   if (styles) z_ = styles->all();
 }
 

@@ -105,7 +105,6 @@ struct Trainer::Impl {
   torch::Tensor obs_buf, last_obs, act_buf, logp_buf, val_buf, rew_buf, done_buf, boot_buf, amp_buf,
       style_buf;
   void AllocateRollout(int64_t T) {
-    if (obs_buf.defined()) return;
     obs_buf = torch::empty({T, n, obs_dim});
     last_obs = torch::empty({n, obs_dim});
     act_buf = torch::empty({T, n, act_dim});
@@ -181,6 +180,7 @@ Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> 
   }
   m.optim = std::make_unique<torch::optim::Adam>(
       params, torch::optim::AdamOptions(config.ppo.learning_rate).eps(1e-8));
+  m.AllocateRollout(config.ppo.horizon);
   m.env->Reset();
   m.obs_norm->Update(FromBuffer(m.env->observations(), {m.n, m.obs_dim}));
   m.ep_return.assign(m.n, 0.0);
@@ -200,7 +200,6 @@ IterationStats Trainer::RunIteration() {
   const int64_t T = ppo.horizon, N = m.n, D = m.obs_dim, A = m.act_dim, W = m.amp_dim;
   IterationStats st;
   const auto t_iter = Clock::now();
-  m.AllocateRollout(T);
   float* obs_p = m.obs_buf.data_ptr<float>();
   float* act_p = m.act_buf.data_ptr<float>();
   float* logp_p = m.logp_buf.data_ptr<float>();
@@ -210,8 +209,6 @@ IterationStats Trainer::RunIteration() {
   float* boot_p = m.boot_buf.data_ptr<float>();
   std::fill(boot_p, boot_p + T * N, 0.0f);  // V(terminal) for time-outs, 0 for terminations
   const float sigma = static_cast<float>(std::exp(m.ac->log_std()));
-  const double logp_const = static_cast<double>(A) * (m.ac->log_std() + 0.5 * std::log(2.0 * M_PI));
-  const double inv_var = std::exp(-2.0 * m.ac->log_std());
   double ret_sum = 0, len_sum = 0, succ_sum = 0, fall_sum = 0;
   int64_t episodes = 0;
 
@@ -232,16 +229,10 @@ IterationStats Trainer::RunIteration() {
       std::memcpy(val_p + t * N, v.data_ptr<float>(), sizeof(float) * N);
       const float* mu_p = mu.data_ptr<float>();
       float* a_t = act_p + t * N * A;
-      for (int64_t i = 0; i < N; ++i) {
-        double sq = 0;
-        for (int64_t k = 0; k < A; ++k) {
-          const int64_t j = i * A + k;
-          a_t[j] = mu_p[j] + sigma * static_cast<float>(m.rng.Normal());
-          const double d = static_cast<double>(a_t[j]) - mu_p[j];
-          sq += d * d;
-        }
-        logp_p[t * N + i] = static_cast<float>(-0.5 * sq * inv_var - logp_const);
-      }
+      for (int64_t j = 0; j < N * A; ++j)
+        a_t[j] = mu_p[j] + sigma * static_cast<float>(m.rng.Normal());
+      const auto logp = GaussianLogProb(torch::from_blob(a_t, {N, A}), mu, m.ac->log_std());
+      std::memcpy(logp_p + t * N, logp.contiguous().data_ptr<float>(), sizeof(float) * N);
       if (m.use_amp && m.style_dim > 0 && m.env->style_ids()) {
         const int* ids = m.env->style_ids();
         int64_t* s_t = m.style_buf.data_ptr<int64_t>() + t * N;
@@ -295,8 +286,6 @@ IterationStats Trainer::RunIteration() {
   }
   const double collect_s = Since(t_collect);
   m.samples += T * N;
-  const auto& obs_buf = m.obs_buf;
-  const auto& rew_buf = m.rew_buf;
 
   // ---- style rewards (discriminator), advantages -------------------------------------------
   double disc_s = 0, ppo_s = 0;
@@ -317,14 +306,14 @@ IterationStats Trainer::RunIteration() {
   torch::Tensor reward, adv, ret_target, obs_f, norm_obs_f, act_f, logp_f, adv_f;
   {
     torch::NoGradGuard guard;
-    reward = m.use_amp ? ampc.task_weight * rew_buf + ampc.style_weight * style_rew : rew_buf;
+    reward = m.use_amp ? ampc.task_weight * m.rew_buf + ampc.style_weight * style_rew : m.rew_buf;
     auto next_val = m.val_buf.slice(0, 1, T + 1).clone();
     next_val = torch::where(m.done_buf > 0.5, m.boot_buf, next_val);
     const auto values = m.val_buf.slice(0, 0, T);
     adv = ComputeGae(reward, values, next_val, m.done_buf, ppo.gamma, ppo.lambda);
     const auto returns = adv + values;
     if (ppo.normalize_value) m.value_norm->Update(returns.reshape({-1, 1}));
-    obs_f = obs_buf.reshape({T * N, D});
+    obs_f = m.obs_buf.reshape({T * N, D});
     // obs_norm changes only after the update: normalise the whole batch once.
     norm_obs_f = m.obs_norm->Normalize(obs_f);
     act_f = m.act_buf.reshape({T * N, A});
@@ -427,7 +416,7 @@ IterationStats Trainer::RunIteration() {
   const double s = std::max<int64_t>(steps, 1);
   st.iteration = m.iteration;
   st.samples = m.samples;
-  st.task_reward = rew_buf.mean().item<double>();
+  st.task_reward = m.rew_buf.mean().item<double>();
   st.style_reward = style_rew.mean().item<double>();
   st.total_reward = reward.mean().item<double>();
   st.episodes = episodes;

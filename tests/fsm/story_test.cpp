@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "common/test_util.h"
+#include "common/tiny_training.h"
 #include "sims/core/error.h"
 #include "sims/fsm/story_job.h"
 #include "sims/learning/train_run.h"
@@ -17,17 +18,7 @@ namespace {
 // Trains `skill` for one tiny iteration into dir/<skill>/policy.pt: a real policy file the
 // FSM loads, whose actions the tests replace with scripted ones where it matters.
 void TrainTinyPolicy(const std::string& skill, const std::filesystem::path& dir) {
-  learning::TrainConfig c;
-  c.env.num_envs = 2;
-  c.env.threads = 1;
-  c.skill.skill = skill;
-  c.learner.amp.enabled = false;
-  c.learner.network.actor_hidden = {16};
-  c.learner.network.critic_hidden = {16};
-  c.learner.network.heightmap_hidden = {8};
-  c.learner.ppo.horizon = 4;
-  c.learner.ppo.mini_epochs = 1;
-  c.iterations = 1;
+  const learning::TrainConfig c = sims::testing::TinyTrainConfig(skill);
   learning::TrainOptions o;
   o.out_dir = dir / skill;
   learning::RunTraining(c, o);

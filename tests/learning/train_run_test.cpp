@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "common/test_util.h"
+#include "common/tiny_training.h"
 #include "sims/core/error.h"
 #include "sims/io/training_report.h"
 #include "sims/learning/bench.h"
@@ -14,19 +15,9 @@
 namespace sims::learning {
 namespace {
 
-// A walk run small enough for a unit test: two envs, four steps per iteration, no AMP.
+// A walk run small enough for a unit test, three iterations with a checkpoint after the second.
 TrainConfig TinyWalk() {
-  TrainConfig c;
-  c.env.num_envs = 2;
-  c.env.threads = 1;
-  c.skill.skill = "walk";
-  c.learner.amp.enabled = false;
-  c.learner.network.actor_hidden = {16};
-  c.learner.network.critic_hidden = {16};
-  c.learner.network.heightmap_hidden = {8};
-  c.learner.ppo.horizon = 4;
-  c.learner.ppo.mini_epochs = 1;
-  c.learner.ppo.minibatch_size = 8;
+  TrainConfig c = sims::testing::TinyTrainConfig("walk");
   c.checkpoint_every = 2;
   c.iterations = 3;
   return c;
