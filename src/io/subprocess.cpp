@@ -19,8 +19,8 @@ namespace sims::io {
 namespace {
 
 // Child side after fork: only async-signal-safe calls until exec.
-[[noreturn]] void ChildExec(char* const* argv, const int* src, const int* dst, int n,
-                            int stdout_file, int stderr_file, int report_fd) {
+[[noreturn]] void ChildExec(char* const* argv, char* const* envp, const int* src, const int* dst,
+                            int n, int stdout_file, int stderr_file, int report_fd) {
   // Move every source above the highest target first so dup2 never clobbers a source.
   int moved[16];
   for (int i = 0; i < n; ++i) moved[i] = fcntl(src[i], F_DUPFD, 64);
@@ -29,7 +29,7 @@ namespace {
   if (stdout_file >= 0) dup2(stdout_file, 1);
   if (stderr_file >= 0) dup2(stderr_file, 2);
   if (stderr_file == -2) dup2(1, 2);
-  execvp(argv[0], argv);
+  execvpe(argv[0], argv, envp);
   const int err = errno;
   (void)!write(report_fd, &err, sizeof(err));
   _exit(127);
@@ -103,11 +103,24 @@ Subprocess::Subprocess(const std::vector<std::string>& argv, const SubprocessOpt
   std::vector<char*> cargv;
   for (auto& a : args) cargv.push_back(a.data());
   cargv.push_back(nullptr);
+  // The child's environment is built before fork: nothing after it may allocate.
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e) {
+    const std::string entry = *e;
+    const auto name = entry.substr(0, entry.find('=') + 1);
+    bool replaced = false;
+    for (const auto& x : options.env) replaced |= x.compare(0, name.size(), name) == 0;
+    if (!replaced) env.push_back(entry);
+  }
+  env.insert(env.end(), options.env.begin(), options.env.end());
+  std::vector<char*> cenv;
+  for (auto& e : env) cenv.push_back(e.data());
+  cenv.push_back(nullptr);
 
   pid_ = fork();
   if (pid_ == 0)
-    ChildExec(cargv.data(), src.data(), dst.data(), static_cast<int>(src.size()), out_fd,
-              options.stderr_to_stdout ? -2 : err_fd, report[1]);
+    ChildExec(cargv.data(), cenv.data(), src.data(), dst.data(), static_cast<int>(src.size()),
+              out_fd, options.stderr_to_stdout ? -2 : err_fd, report[1]);
   for (int fd : child_ends) close(fd);
   if (out_fd >= 0) close(out_fd);
   if (err_fd >= 0) close(err_fd);

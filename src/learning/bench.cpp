@@ -1,12 +1,18 @@
 #include "sims/learning/bench.h"
 
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
+#include <fstream>
 
 #include <torch/torch.h>
 
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
+#include "sims/io/subprocess.h"
 #include "sims/learning/motion_demo.h"
 #include "sims/learning/sim_vec_env.h"
 #include "sims/learning/text_styles.h"
@@ -77,6 +83,9 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   TrainOptions options;
   options.out_dir = dir;
   options.iterations = warmup + measured;
+  options.comm = o.comm;
+  const int world = o.comm ? o.comm->world_size() : 1;
+  int64_t bytes_before = 0, calls_before = 0;
   struct Sums {
     double interval = 0, env = 0, inference = 0, disc = 0, ppo = 0, logging = 0, gflop = 0;
     double update = 0;
@@ -85,7 +94,10 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   } sum;
   int seen = 0;
   options.on_iteration = [&](const IterationStats& s, const IterationTiming& t) {
-    if (++seen <= warmup) return;
+    if (++seen <= warmup) {
+      if (o.comm) bytes_before = o.comm->bytes_reduced(), calls_before = o.comm->reduce_calls();
+      return;
+    }
     sum.interval += t.interval_seconds;
     sum.logging += t.logging_seconds;
     sum.env += s.env_seconds;
@@ -94,7 +106,7 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
     sum.ppo += s.ppo_seconds;
     sum.gflop += s.update_gflop;
     sum.update += s.update_seconds;
-    sum.samples += static_cast<int64_t>(config.learner.ppo.horizon) * config.env.num_envs;
+    sum.samples += static_cast<int64_t>(config.learner.ppo.horizon) * config.env.num_envs * world;
     ++sum.count;
   };
   try {
@@ -105,6 +117,46 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   }
   std::filesystem::remove_all(dir);
   SIMS_CHECK(sum.count == measured);
+  nlohmann::json result = {{"config", o.config.string()},
+                           {"skill", config.skill.skill},
+                           {"threads", ThreadCount()},
+                           {"ranks", world},
+                           {"num_envs", config.env.num_envs},
+                           {"horizon", config.learner.ppo.horizon},
+                           {"mini_epochs", config.learner.ppo.mini_epochs},
+                           {"minibatch_size", config.learner.ppo.minibatch_size},
+                           {"amp", config.learner.amp.enabled},
+                           {"amp_history", config.env.amp_history},
+                           {"amp_batch_size", config.learner.amp.batch_size},
+                           {"iterations", measured},
+                           {"samples", sum.samples},
+                           {"wall_seconds", sum.interval},
+                           {"samples_per_s", sum.samples / sum.interval}};
+  if (o.comm) {
+    const double per_it = 1.0 / measured;
+    result["allreduce_bytes_per_iteration"] = (o.comm->bytes_reduced() - bytes_before) * per_it;
+    result["allreduce_calls_per_iteration"] = (o.comm->reduce_calls() - calls_before) * per_it;
+    const int64_t grad_bytes = o.comm->max_reduce_bytes();
+    result["gradient_bytes"] = grad_bytes;
+    // All-reduce time of a small message (latency) and of the flattened gradients, measured
+    // between these ranks now (median of 31).
+    auto time_allreduce = [&](int64_t floats) {
+      std::vector<float> buf(std::max<int64_t>(floats, 1), 1.0f);
+      std::vector<double> t;
+      for (int r = 0; r < 36; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        o.comm->AllReduceSum(buf.data(), static_cast<int64_t>(buf.size()));
+        if (r >= 5)
+          t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
+      std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+      return t[t.size() / 2];
+    };
+    result["allreduce_small_bytes"] = 4096;
+    result["allreduce_small_seconds"] = time_allreduce(1024);
+    result["allreduce_gradient_seconds"] = time_allreduce(grad_bytes / 4);
+  }
+  if (!o.references) return result;
 
   // References measured in this run: raw mj_step on the skill's own scene, and sgemm.
   auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
@@ -117,43 +169,163 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   const double per_it = 1.0 / measured;
   const double other = sum.interval - sum.env - sum.inference - sum.disc - sum.ppo - sum.logging;
   auto share = [&](double x) { return x / sum.interval; };
-  return {{"config", o.config.string()},
-          {"skill", config.skill.skill},
-          {"threads", ThreadCount()},
-          {"num_envs", config.env.num_envs},
-          {"horizon", config.learner.ppo.horizon},
-          {"mini_epochs", config.learner.ppo.mini_epochs},
-          {"minibatch_size", config.learner.ppo.minibatch_size},
-          {"amp", config.learner.amp.enabled},
-          {"amp_history", config.env.amp_history},
-          {"amp_batch_size", config.learner.amp.batch_size},
-          {"iterations", measured},
-          {"samples", sum.samples},
-          {"wall_seconds", sum.interval},
-          {"samples_per_s", samples / sum.interval},
-          {"time_share",
-           {{"env", share(sum.env)},
-            {"inference", share(sum.inference)},
-            {"discriminator", share(sum.disc)},
-            {"ppo_update", share(sum.ppo)},
-            {"logging", share(sum.logging)},
-            {"other", share(other)}}},
-          {"seconds_per_iteration",
-           {{"total", sum.interval * per_it},
-            {"env", sum.env * per_it},
-            {"inference", sum.inference * per_it},
-            {"discriminator", sum.disc * per_it},
-            {"ppo_update", sum.ppo * per_it},
-            {"logging", sum.logging * per_it},
-            {"other", other * per_it}}},
-          {"env_samples_per_s", samples / sum.env},
-          {"raw_mj_step_per_s", raw},
-          {"raw_ceiling_samples_per_s", ceiling},
-          {"env_vs_raw", samples / sum.env / ceiling},
-          {"end_to_end_vs_ceiling", samples / sum.interval / ceiling},
-          {"update_gflops", sum.gflop / sum.update},
-          {"sgemm_gflops", sgemm},
-          {"update_vs_sgemm", sum.gflop / sum.update / sgemm}};
+  result.update({{"time_share",
+                  {{"env", share(sum.env)},
+                   {"inference", share(sum.inference)},
+                   {"discriminator", share(sum.disc)},
+                   {"ppo_update", share(sum.ppo)},
+                   {"logging", share(sum.logging)},
+                   {"other", share(other)}}},
+                 {"seconds_per_iteration",
+                  {{"total", sum.interval * per_it},
+                   {"env", sum.env * per_it},
+                   {"inference", sum.inference * per_it},
+                   {"discriminator", sum.disc * per_it},
+                   {"ppo_update", sum.ppo * per_it},
+                   {"logging", sum.logging * per_it},
+                   {"other", other * per_it}}},
+                 {"env_samples_per_s", samples / sum.env},
+                 {"raw_mj_step_per_s", raw},
+                 {"raw_ceiling_samples_per_s", ceiling},
+                 {"env_vs_raw", samples / sum.env / ceiling},
+                 {"end_to_end_vs_ceiling", samples / sum.interval / ceiling},
+                 {"update_gflops", sum.gflop / sum.update},
+                 {"sgemm_gflops", sgemm},
+                 {"update_vs_sgemm", sum.gflop / sum.update / sgemm}});
+  return result;
+}
+
+namespace {
+
+// A TCP port on 127.0.0.1 that was free a moment ago (the kernel picks it).
+int FreeLoopbackPort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  SIMS_CHECK_MSG(fd >= 0, "socket() failed");
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  addr.sin_port = 0;
+  socklen_t len = sizeof(addr);
+  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0 &&
+                  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0;
+  close(fd);
+  SIMS_CHECK_MSG(ok, "could not find a free loopback port");
+  return ntohs(addr.sin_port);
+}
+
+// Starts `count` workers at once (as ranks of one run, or independently), waits for all and
+// returns their JSON results.
+std::vector<nlohmann::json> RunWorkers(const RankBenchOptions& o, int count, bool as_ranks,
+                                       const std::filesystem::path& dir) {
+  const int port = as_ranks ? FreeLoopbackPort() : 0;
+  std::vector<std::unique_ptr<io::Subprocess>> procs;
+  std::vector<std::filesystem::path> outs, logs;
+  for (int i = 0; i < count; ++i) {
+    const std::string tag =
+        (as_ranks ? "rank" : "solo") + std::to_string(count) + "_" + std::to_string(i);
+    outs.push_back(dir / (tag + ".json"));
+    logs.push_back(dir / (tag + ".log"));
+    auto argv = o.worker;
+    argv.insert(argv.end(), {"--worker-out", outs.back().string()});
+    io::SubprocessOptions so;
+    so.stdout_file = logs.back();
+    so.stderr_to_stdout = true;
+    // One thread per process; a launcher's variables from the caller's shell never leak in.
+    so.env = {"OMP_NUM_THREADS=1", "RANK=" + std::to_string(as_ranks ? i : 0),
+              "WORLD_SIZE=" + std::to_string(as_ranks ? count : 1), "MASTER_ADDR=127.0.0.1",
+              "MASTER_PORT=" + std::to_string(as_ranks ? port : 29500)};
+    procs.push_back(std::make_unique<io::Subprocess>(argv, so));
+  }
+  std::vector<nlohmann::json> results;
+  for (int i = 0; i < count; ++i) {
+    const int code = procs[i]->Wait();
+    if (code != 0) {
+      std::ifstream in(logs[i]);
+      std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (text.size() > 2000) text = text.substr(text.size() - 2000);
+      throw Error("bench_train worker " + std::to_string(i) + " exited with code " +
+                  std::to_string(code) + ":\n" + text);
+    }
+    results.push_back(ReadJsonFile(outs[i]));
+  }
+  return results;
+}
+
+}  // namespace
+
+nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& o) {
+  if (o.ranks < 2) ThrowInputError("--ranks", "ranks", "at least 2", std::to_string(o.ranks));
+  if (o.worker.empty()) ThrowInputError("bench options", "worker", "a worker command", "none");
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("sims_bench_ranks_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  nlohmann::json single, ranked;
+  std::vector<nlohmann::json> indep;
+  try {
+    single = RunWorkers(o, 1, false, dir)[0];
+    indep = RunWorkers(o, o.ranks, false, dir);
+    ranked = RunWorkers(o, o.ranks, true, dir)[0];
+  } catch (...) {
+    std::filesystem::remove_all(dir);
+    throw;
+  }
+  std::filesystem::remove_all(dir);
+
+  const double s1 = single["samples_per_s"].get<double>();
+  double s_indep = 0;
+  for (const auto& r : indep) s_indep += r["samples_per_s"].get<double>();
+  const double s_ranked = ranked["samples_per_s"].get<double>();
+  const double indep_speedup = s_indep / s1, ranked_speedup = s_ranked / s1;
+
+  // Projection: each rank computes as the single process did; per iteration it adds its
+  // all-reduces, modelled as a ring: T(P, B) = 2(P−1)·α + 2(P−1)/P · B/β, with α from the
+  // small message and β from the gradient-sized one, both measured above between 2 ranks.
+  const double batch_rank =
+      static_cast<double>(single["horizon"].get<int>()) * single["num_envs"].get<int>();
+  const double t_iter = batch_rank / s1;
+  const double t_small = ranked["allreduce_small_seconds"].get<double>();
+  const double t_grad = ranked["allreduce_gradient_seconds"].get<double>();
+  const double grad_bytes = ranked["gradient_bytes"].get<double>();
+  const double calls = ranked["allreduce_calls_per_iteration"].get<double>();
+  const double bytes_it = ranked["allreduce_bytes_per_iteration"].get<double>();
+  const double alpha = t_small / 2.0;
+  const double beta = grad_bytes / std::max(t_grad - 2.0 * alpha, 1e-9);
+  nlohmann::json table = nlohmann::json::array();
+  for (int p : o.project) {
+    const double steps = 2.0 * (p - 1);
+    const double t_comm = calls * steps * alpha + steps / p * bytes_it / beta;
+    const double t = t_iter + t_comm;
+    table.push_back({{"ranks", p},
+                     {"samples_per_s", p * batch_rank / t},
+                     {"efficiency", t_iter / t},
+                     {"allreduce_seconds_per_iteration", t_comm}});
+  }
+  return {{"config", o.train.config.string()},
+          {"ranks", o.ranks},
+          {"threads_per_rank", 1},
+          {"num_envs_per_rank", single["num_envs"]},
+          {"iterations", single["iterations"]},
+          {"single_samples_per_s", s1},
+          {"independent_samples_per_s", s_indep},
+          {"independent_speedup", indep_speedup},
+          {"ranked_samples_per_s", s_ranked},
+          {"ranked_speedup", ranked_speedup},
+          {"efficiency", s_ranked / s_indep},
+          {"allreduce",
+           {{"calls_per_iteration", calls},
+            {"bytes_per_iteration", bytes_it},
+            {"gradient_bytes", grad_bytes},
+            {"small_seconds", t_small},
+            {"gradient_seconds", t_grad},
+            {"latency_alpha_seconds", alpha},
+            {"bandwidth_bytes_per_s", beta}}},
+          {"seconds_per_iteration_single", t_iter},
+          {"projection_model",
+           "t(P) = t_iter + calls*2(P-1)*alpha + 2(P-1)/P*bytes/beta; 1 thread per rank, "
+           "excludes the machine's own core sharing (independent_speedup)"},
+          {"projection", table},
+          {"workers", {{"single", single}, {"independent", indep}, {"ranked_rank0", ranked}}}};
 }
 
 }  // namespace sims::learning

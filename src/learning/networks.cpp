@@ -29,8 +29,13 @@ void RunningMeanStdImpl::Update(const torch::Tensor& x) {
   const auto xd = x.to(torch::kFloat64).reshape({-1, mean_.size(0)});
   const double n = static_cast<double>(xd.size(0));
   if (n == 0) return;
-  const auto batch_mean = xd.mean(0);
-  const auto batch_var = xd.var(0, /*unbiased=*/false);
+  Merge(n, xd.mean(0), xd.var(0, /*unbiased=*/false));
+}
+
+void RunningMeanStdImpl::Merge(double n, const torch::Tensor& batch_mean,
+                               const torch::Tensor& batch_var) {
+  torch::NoGradGuard guard;
+  if (n <= 0) return;
   const auto delta = batch_mean - mean_;
   const auto total = count_ + n;
   const auto new_mean = mean_ + delta * n / total;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "sims/core/error.h"
@@ -128,28 +129,49 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   const auto config_path = out / "config.json";
   const auto ckpt_path = out / "checkpoint.pt";
   const auto csv_path = out / "log.csv";
-  if (options.resume) {
-    if (!std::filesystem::exists(ckpt_path))
-      ThrowInputError(ckpt_path.string(), "", "a checkpoint to resume from (--resume)", "none");
-    // Resume with exactly the configuration the run started with.
-    config = LoadConfig<TrainConfig>(config_path);
-  } else {
-    if (options.seed) {
-      config.env.seed = *options.seed;
-      config.learner.seed = *options.seed;
+  const int rank = options.comm ? options.comm->rank() : 0;
+  const int world = options.comm ? options.comm->world_size() : 1;
+  const bool writer = rank == 0;
+  if (writer) {
+    if (options.resume) {
+      if (!std::filesystem::exists(ckpt_path))
+        ThrowInputError(ckpt_path.string(), "", "a checkpoint to resume from (--resume)", "none");
+      // Resume with exactly the configuration the run started with.
+      config = LoadConfig<TrainConfig>(config_path);
+    } else {
+      if (options.seed) {
+        config.env.seed = *options.seed;
+        config.learner.seed = *options.seed;
+      }
     }
+    if (options.skill && *options.skill != config.skill.skill)
+      ThrowInputError("--skill", "skill", "the skill of the config ('" + config.skill.skill + "')",
+                      "'" + *options.skill + "'");
+    if (options.iterations) config.iterations = *options.iterations;
+    ValidateConfig(config, config_path.string());
   }
-  if (options.skill && *options.skill != config.skill.skill)
-    ThrowInputError("--skill", "skill", "the skill of the config ('" + config.skill.skill + "')",
-                    "'" + *options.skill + "'");
-  if (options.iterations) config.iterations = *options.iterations;
-  ValidateConfig(config, config_path.string());
-  std::filesystem::create_directories(out);
-  if (!options.resume) SaveConfig(config_path, config);
+  if (options.comm) {
+    // Every rank trains with rank 0's resolved config (the others need no copy of out_dir).
+    std::string text = writer ? ConfigToJson(config).dump() : std::string();
+    options.comm->Broadcast(&text, 0);
+    if (!writer)
+      config = ConfigFromJson<TrainConfig>(nlohmann::json::parse(text), "rank 0's config");
+  }
+  if (writer) {
+    std::filesystem::create_directories(out);
+    if (!options.resume) SaveConfig(config_path, config);
+    WriteJsonFile(out / "ranks.json", {{"world_size", world},
+                                       {"envs_per_rank", config.env.num_envs},
+                                       {"check_every", options.check_every}});
+  }
 
+  // One scene for all ranks (it follows the run seed); environment streams follow the global
+  // env id, rank × num_envs + i, as in one process with every rank's environments.
   auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
   ApplyStyleModel(config.skill, &setup);
-  auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, config.env, setup.skill);
+  sim::EnvConfig env_config = config.env;
+  env_config.seed += static_cast<uint64_t>(rank) * static_cast<uint64_t>(config.env.num_envs);
+  auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, env_config, setup.skill);
   auto vec = std::make_shared<SimVecEnv>(env);
   std::shared_ptr<const DemoSource> demo;
   if (config.learner.amp.enabled) {
@@ -160,44 +182,52 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
         setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr,
         config.env.amp_history);
   }
-  Trainer trainer(vec, demo, config.learner);
-  if (options.resume) {
-    trainer.LoadCheckpoint(ckpt_path);
-    TruncateLog(csv_path, trainer.iteration());
-    spdlog::info("resumed {} at iteration {}", out.string(), trainer.iteration());
-  } else {
-    if (!options.init_policy.empty()) {
-      trainer.InitFromPolicy(options.init_policy);
-      WriteJsonFile(out / "init_policy.json", {{"policy", options.init_policy.string()}});
-      spdlog::info("actor/critic initialised from {}", options.init_policy.string());
+  Trainer trainer(vec, demo, config.learner, options.comm, options.check_every);
+  if (writer) {
+    if (options.resume) {
+      trainer.LoadCheckpoint(ckpt_path);
+      TruncateLog(csv_path, trainer.iteration());
+      spdlog::info("resumed {} at iteration {}", out.string(), trainer.iteration());
+    } else {
+      if (!options.init_policy.empty()) {
+        trainer.InitFromPolicy(options.init_policy);
+        WriteJsonFile(out / "init_policy.json", {{"policy", options.init_policy.string()}});
+        spdlog::info("actor/critic initialised from {}", options.init_policy.string());
+      }
+      if (!options.init_from.empty()) {
+        trainer.LoadCheckpoint(options.init_from);
+        WriteJsonFile(out / "init_from.json", {{"checkpoint", options.init_from.string()},
+                                               {"iteration", trainer.iteration()}});
+        spdlog::info("warm start from {} (iteration {})", options.init_from.string(),
+                     trainer.iteration());
+      }
+      WriteFileAtomic(csv_path, CsvHeader() + "\n");
     }
-    if (!options.init_from.empty()) {
-      trainer.LoadCheckpoint(options.init_from);
-      WriteJsonFile(out / "init_from.json", {{"checkpoint", options.init_from.string()},
-                                             {"iteration", trainer.iteration()}});
-      spdlog::info("warm start from {} (iteration {})", options.init_from.string(),
-                   trainer.iteration());
-    }
-    WriteFileAtomic(csv_path, CsvHeader() + "\n");
   }
+  trainer.Synchronize();
   const nlohmann::json extra = {{"skill", ConfigToJson(config.skill)},
                                 {"env", ConfigToJson(config.env)}};
   auto save_all = [&]() {
+    if (!writer) return;
     trainer.SaveCheckpoint(ckpt_path);
     trainer.ExportPolicy(out / "policy.pt", extra.dump());
     io::WriteTrainingReport(csv_path, out / "report.html", "train_policy " + config.skill.skill);
   };
 
-  ProgressReporter progress("train " + config.skill.skill, config.iterations, "it", 10.0,
-                            trainer.iteration());
+  std::optional<ProgressReporter> progress;
+  if (writer)
+    progress.emplace("train " + config.skill.skill, config.iterations, "it", 10.0,
+                     trainer.iteration());
   const int64_t start = trainer.iteration();
-  std::ofstream csv(csv_path, std::ios::app);
-  const double batch =
-      static_cast<double>(config.learner.ppo.horizon) * static_cast<double>(config.env.num_envs);
+  std::ofstream csv;
+  if (writer) csv.open(csv_path, std::ios::app);
+  const double batch = static_cast<double>(config.learner.ppo.horizon) *
+                       static_cast<double>(config.env.num_envs) * world;
   // samples/s as a user feels it: each row's interval runs from the end of the previous
   // iteration's update to the end of this one, so it holds the previous row's logging and
   // checkpoint too.
   auto last_end = std::chrono::steady_clock::now();
+  const auto run_start = last_end;
   double logging_s = 0;
   for (int64_t it = start; it < config.iterations; ++it) {
     const IterationStats s = trainer.RunIteration();
@@ -207,23 +237,25 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
     timing.logging_seconds = logging_s;
     timing.samples_per_s = batch / std::max(timing.interval_seconds, 1e-9);
     last_end = end;
-    csv << CsvRow(s, timing) << "\n";
-    csv.flush();
-    char extra_text[200];
-    std::snprintf(
-        extra_text, sizeof(extra_text),
-        "reward %.3f (task %.3f style %.3f) success %.2f falls %.2f ep_len %.0f, %.0f samples/s "
-        "(mean %.0f)",
-        s.total_reward, s.task_reward, s.style_reward, s.success_rate, s.fall_rate,
-        s.episode_length, timing.samples_per_s,
-        batch * static_cast<double>(it + 1 - start) / std::max(progress.ElapsedSeconds(), 1e-9));
-    progress.Update(it + 1, extra_text);
+    if (writer) {
+      csv << CsvRow(s, timing) << "\n";
+      csv.flush();
+      char extra_text[200];
+      const double elapsed = std::chrono::duration<double>(end - run_start).count();
+      std::snprintf(extra_text, sizeof(extra_text),
+                    "reward %.3f (task %.3f style %.3f) success %.2f falls %.2f ep_len %.0f, "
+                    "%.0f samples/s (mean %.0f)",
+                    s.total_reward, s.task_reward, s.style_reward, s.success_rate, s.fall_rate,
+                    s.episode_length, timing.samples_per_s,
+                    batch * static_cast<double>(it + 1 - start) / std::max(elapsed, 1e-9));
+      progress->Update(it + 1, extra_text);
+    }
     if ((it + 1) % config.checkpoint_every == 0) save_all();
     logging_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - end).count();
     if (options.on_iteration) options.on_iteration(s, timing);
   }
   save_all();
-  progress.Finish();
+  if (progress) progress->Finish();
   return trainer.iteration();
 }
 

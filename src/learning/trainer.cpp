@@ -6,7 +6,10 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <mutex>
 #include <numeric>
+#include <sstream>
+#include <tuple>
 
 #include <torch/torch.h>
 
@@ -14,6 +17,7 @@
 #include "sims/core/log.h"
 #include "sims/core/parallel.h"
 #include "sims/learning/amp.h"
+#include "sims/learning/distributed.h"
 #include "sims/learning/networks.h"
 #include "sims/learning/ppo.h"
 
@@ -76,7 +80,14 @@ struct Trainer::Impl {
   std::unique_ptr<torch::optim::Adam> optim;
   std::unique_ptr<ReplayBuffer> replay;
   torch::Tensor demo_pool, demo_pool_styles, style_table;
-  Rng rng;
+  // `rng` orders minibatches and is the same on every rank; exploration noise comes from one
+  // stream per environment (by global env id) and discriminator sampling from a per-rank one,
+  // so a run's update does not depend on how its environments are split over ranks.
+  Rng rng, amp_rng;
+  std::vector<Rng> noise_rng;
+  std::shared_ptr<Communicator> comm;
+  int rank = 0, world = 1, check_every = 10;
+  int64_t first_env = 0;
   int64_t iteration = 0, samples = 0;
   std::vector<double> ep_return, ep_len;
   std::vector<uint8_t> ep_success;
@@ -88,6 +99,98 @@ struct Trainer::Impl {
       p.insert(p.end(), d.begin(), d.end());
     }
     return p;
+  }
+
+  /// Networks, normalisers, optimiser, minibatch stream and counters: what all ranks share.
+  void WriteLearnerState(torch::serialize::OutputArchive& archive) const;
+  /// Reads WriteLearnerState() output; `source` names it in errors.
+  void ReadLearnerState(torch::serialize::InputArchive& archive, const std::string& source);
+
+  // Sum over ranks, in place (contiguous float32 or float64 tensors).
+  void AllReduce(torch::Tensor& t) {
+    if (!comm) return;
+    if (t.scalar_type() == torch::kFloat64)
+      comm->AllReduceSum(t.data_ptr<double>(), t.numel());
+    else
+      comm->AllReduceSum(t.data_ptr<float>(), t.numel());
+  }
+
+  // Folds a batch into a normaliser; with ranks, the batch is the union of all ranks' batches
+  // (moments all-reduced in float64), so every rank keeps identical statistics.
+  void UpdateNorm(RunningMeanStd& norm, const torch::Tensor& x) {
+    if (!comm) return norm->Update(x);
+    torch::NoGradGuard guard;
+    const int64_t d = norm->size();
+    const auto xd = x.to(torch::kFloat64).reshape({-1, d});
+    auto moments = torch::cat({torch::full({1}, static_cast<double>(xd.size(0)), torch::kFloat64),
+                               xd.sum(0), xd.pow(2).sum(0)})
+                       .contiguous();
+    AllReduce(moments);
+    const double count = moments[0].item<double>();
+    if (count <= 0) return;
+    const auto mean = moments.slice(0, 1, 1 + d) / count;
+    const auto var =
+        torch::clamp_min(moments.slice(0, 1 + d, 1 + 2 * d) / count - mean.pow(2), 0.0);
+    norm->Merge(count, mean, var);
+  }
+
+  // One flattened all-reduce of every gradient (actor, critic, discriminator) per minibatch:
+  // each rank's loss is already weighted by its share of the global minibatch, so the sum is
+  // the gradient of the global loss.
+  void ReduceGradients(const std::vector<torch::Tensor>& params) {
+    if (!comm) return;
+    torch::NoGradGuard guard;
+    std::vector<torch::Tensor> flat;
+    flat.reserve(params.size());
+    for (const auto& p : params)
+      flat.push_back(p.grad().defined() ? p.grad().reshape({-1}) : torch::zeros({p.numel()}));
+    auto all = torch::cat(flat);
+    AllReduce(all);
+    int64_t off = 0;
+    for (auto p : params) {
+      const auto g = all.slice(0, off, off + p.numel()).view(p.sizes());
+      if (p.grad().defined())
+        p.mutable_grad().copy_(g);
+      else
+        p.mutable_grad() = g.clone();
+      off += p.numel();
+    }
+  }
+
+  // Mean and unbiased standard deviation of a tensor over all ranks.
+  std::pair<double, double> GlobalMeanStd(const torch::Tensor& x) {
+    const auto xd = x.to(torch::kFloat64);
+    auto m = torch::stack({torch::full({}, static_cast<double>(xd.numel()), torch::kFloat64),
+                           xd.sum(), xd.pow(2).sum()})
+                 .contiguous();
+    AllReduce(m);
+    const double n = m[0].item<double>(), sum = m[1].item<double>(), sq = m[2].item<double>();
+    const double mean = sum / std::max(n, 1.0);
+    const double var = n > 1 ? std::max(sq - n * mean * mean, 0.0) / (n - 1) : 0.0;
+    return {mean, std::sqrt(var)};
+  }
+
+  // Ranks that disagree on parameters would silently train different models: compare a
+  // position-weighted checksum with rank 0's and stop every rank together on a mismatch.
+  void CheckParametersAgree() {
+    torch::NoGradGuard guard;
+    double sum = 0;
+    int64_t i = 0;
+    for (const auto& p : AllParameters()) {
+      const auto c = p.detach().to(torch::kFloat64).reshape({-1});
+      const auto w = torch::arange(i, i + c.numel(), torch::kFloat64).remainder(7.0) + 1.0;
+      sum += (c * w).sum().item<double>();
+      i += c.numel();
+    }
+    double root = sum;
+    comm->Broadcast(&root, 1, 0);
+    double mismatch = root == sum ? 0.0 : 1.0;
+    comm->AllReduceSum(&mismatch, 1);
+    if (mismatch > 0)
+      throw Error("distributed training: parameters differ between ranks at iteration " +
+                  std::to_string(iteration) + " (rank " + std::to_string(rank) + " checksum " +
+                  std::to_string(sum) + ", rank 0 " + std::to_string(root) +
+                  "); ranks must run the same binary, config and checkpoint");
   }
 
   torch::Tensor StyleOf(const torch::Tensor& ids) const {
@@ -121,7 +224,7 @@ struct Trainer::Impl {
 };
 
 Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> demo,
-                 const LearnerConfig& config)
+                 const LearnerConfig& config, std::shared_ptr<Communicator> comm, int check_every)
     : impl_(std::make_unique<Impl>()) {
   BindTorchThreads();
   auto& m = *impl_;
@@ -154,16 +257,53 @@ Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> 
         for (int64_t k = 0; k < m.style_dim; ++k) m.style_table[i][k] = z[i][k];
     }
   }
+  if (comm) {
+    m.comm = std::move(comm);
+    m.rank = m.comm->rank();
+    m.world = m.comm->world_size();
+    m.check_every = std::max(check_every, 1);
+    m.first_env = m.rank * m.n;
+    // Equal sums and sums of squares over ranks hold only when every rank has the same value.
+    double shape[] = {static_cast<double>(m.n),
+                      static_cast<double>(m.obs_dim),
+                      static_cast<double>(m.act_dim),
+                      static_cast<double>(m.amp_dim),
+                      0,
+                      0,
+                      0,
+                      0};
+    for (int k = 0; k < 4; ++k) shape[4 + k] = shape[k] * shape[k];
+    double reduced[8];
+    std::copy(shape, shape + 8, reduced);
+    m.comm->AllReduceSum(reduced, 8);
+    for (int k = 0; k < 4; ++k)
+      if (reduced[k] != m.world * shape[k] || reduced[4 + k] != m.world * shape[4 + k])
+        throw Error(
+            "distributed training, rank " + std::to_string(m.rank) +
+            ": ranks disagree on num_envs / observation / action / AMP widths (this rank: " +
+            std::to_string(m.n) + " envs, obs " + std::to_string(m.obs_dim) +
+            "); every rank needs the same config");
+  }
+  // Network initialisation draws from torch's one global generator: trainers built at the
+  // same time on several threads (ranks in one process, tests) would interleave its draws.
+  static std::mutex init_mutex;
+  std::unique_lock<std::mutex> init_lock(init_mutex);
   torch::manual_seed(config.seed);
   m.rng = Rng(config.seed);
+  m.amp_rng = Rng::ForEnv(config.seed ^ 0xA3B195354A39B70Dull, m.rank);
+  for (int64_t i = 0; i < m.n; ++i)
+    m.noise_rng.push_back(
+        Rng::ForEnv(config.seed ^ 0x2545F4914F6CDD1Dull, static_cast<int>(m.first_env + i)));
   m.ac = ActorCritic(m.segments, m.act_dim, config.network);
   if (const auto mean = m.env->initial_action_mean(); !mean.empty())
     m.ac->SetInitialActionMean(mean);
   m.obs_norm = RunningMeanStd(m.obs_dim, config.ppo.obs_clip);
   m.value_norm = RunningMeanStd(1, 1e9);
   std::vector<torch::Tensor> params = m.ac->parameters();
+  if (!m.use_amp) init_lock.unlock();
   if (m.use_amp) {
     m.disc = Discriminator(m.amp_dim, m.style_dim, config.network);
+    init_lock.unlock();
     m.amp_norm = RunningMeanStd(m.amp_dim, config.ppo.obs_clip);
     auto d = m.disc->parameters();
     params.insert(params.end(), d.begin(), d.end());
@@ -181,8 +321,9 @@ Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> 
   m.optim = std::make_unique<torch::optim::Adam>(
       params, torch::optim::AdamOptions(config.ppo.learning_rate).eps(1e-8));
   m.AllocateRollout(config.ppo.horizon);
+  Synchronize();
   m.env->Reset();
-  m.obs_norm->Update(FromBuffer(m.env->observations(), {m.n, m.obs_dim}));
+  m.UpdateNorm(m.obs_norm, FromBuffer(m.env->observations(), {m.n, m.obs_dim}));
   m.ep_return.assign(m.n, 0.0);
   m.ep_len.assign(m.n, 0.0);
   m.ep_success.assign(m.n, 0);
@@ -229,8 +370,9 @@ IterationStats Trainer::RunIteration() {
       std::memcpy(val_p + t * N, v.data_ptr<float>(), sizeof(float) * N);
       const float* mu_p = mu.data_ptr<float>();
       float* a_t = act_p + t * N * A;
-      for (int64_t j = 0; j < N * A; ++j)
-        a_t[j] = mu_p[j] + sigma * static_cast<float>(m.rng.Normal());
+      for (int64_t i = 0; i < N; ++i)
+        for (int64_t j = i * A; j < (i + 1) * A; ++j)
+          a_t[j] = mu_p[j] + sigma * static_cast<float>(m.noise_rng[i].Normal());
       const auto logp = GaussianLogProb(torch::from_blob(a_t, {N, A}), mu, m.ac->log_std());
       std::memcpy(logp_p + t * N, logp.contiguous().data_ptr<float>(), sizeof(float) * N);
       if (m.use_amp && m.style_dim > 0 && m.env->style_ids()) {
@@ -285,7 +427,7 @@ IterationStats Trainer::RunIteration() {
     std::memcpy(val_p + T * N, v.data_ptr<float>(), sizeof(float) * N);
   }
   const double collect_s = Since(t_collect);
-  m.samples += T * N;
+  m.samples += T * N * m.world;
 
   // ---- style rewards (discriminator), advantages -------------------------------------------
   double disc_s = 0, ppo_s = 0;
@@ -312,7 +454,7 @@ IterationStats Trainer::RunIteration() {
     const auto values = m.val_buf.slice(0, 0, T);
     adv = ComputeGae(reward, values, next_val, m.done_buf, ppo.gamma, ppo.lambda);
     const auto returns = adv + values;
-    if (ppo.normalize_value) m.value_norm->Update(returns.reshape({-1, 1}));
+    if (ppo.normalize_value) m.UpdateNorm(m.value_norm, returns.reshape({-1, 1}));
     obs_f = m.obs_buf.reshape({T * N, D});
     // obs_norm changes only after the update: normalise the whole batch once.
     norm_obs_f = m.obs_norm->Normalize(obs_f);
@@ -320,7 +462,14 @@ IterationStats Trainer::RunIteration() {
     logp_f = m.logp_buf.reshape({T * N});
     const auto ret_f = returns.reshape({T * N});
     adv_f = adv.reshape({T * N});
-    if (ppo.normalize_advantage) adv_f = (adv_f - adv_f.mean()) / (adv_f.std() + 1e-8);
+    if (ppo.normalize_advantage) {
+      if (m.comm) {
+        const auto [mean, std] = m.GlobalMeanStd(adv_f);
+        adv_f = (adv_f - mean) / (std + 1e-8);
+      } else {
+        adv_f = (adv_f - adv_f.mean()) / (adv_f.std() + 1e-8);
+      }
+    }
     ret_target =
         ppo.normalize_value ? m.value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
   }
@@ -330,9 +479,20 @@ IterationStats Trainer::RunIteration() {
   // The PPO and discriminator losses share no parameters: two backward passes give the same
   // gradients as one on their sum, and let the benchmark time each network's share.
   const auto t_update = Clock::now();
-  const int64_t total = T * N;
-  const int64_t mb = std::min<int64_t>(ppo.minibatch_size, total);
+  // With ranks, the batch is the union of all ranks' samples (global flat index
+  // t × N_total + global env id); every rank draws the same permutation of it, and in each
+  // minibatch trains on the samples it holds, its losses weighted by its share.
+  const int64_t total = T * N * m.world;
+  const int64_t mb = std::min<int64_t>(static_cast<int64_t>(ppo.minibatch_size) * m.world, total);
   const int64_t n_mb = std::max<int64_t>(total / mb, 1);
+  const int64_t na_all = std::min<int64_t>(static_cast<int64_t>(ampc.batch_size) * m.world, mb);
+  const int64_t n_total = N * m.world, first = m.first_env;
+  auto local_of = [&](const torch::Tensor& global) {
+    if (m.world == 1) return global;
+    const auto env = global.remainder(n_total);
+    const auto mask = (env >= first).logical_and(env < first + N);
+    return (global.div(n_total, "floor") * N + env - first).masked_select(mask);
+  };
   double a_loss = 0, c_loss = 0, b_loss = 0, d_loss = 0, gp = 0, acc_d = 0, acc_a = 0, clipf = 0;
   int64_t steps = 0, disc_samples = 0;
   const auto params = m.AllParameters();
@@ -340,62 +500,71 @@ IterationStats Trainer::RunIteration() {
     const auto perm = Permutation(m.rng, total);
     for (int64_t k = 0; k < n_mb; ++k) {
       t_phase = Clock::now();
-      const auto idx = perm.slice(0, k * mb, (k + 1) * mb);
-      const auto o = obs_f.index_select(0, idx);
-      const auto norm_o = norm_obs_f.index_select(0, idx);
-      const auto mu = m.ac->Mean(norm_o, o);
-      const auto v = m.ac->Value(norm_o, o);
-      const auto logp = GaussianLogProb(act_f.index_select(0, idx), mu, m.ac->log_std());
-      const auto old_logp = logp_f.index_select(0, idx);
-      const auto actor = ClippedSurrogateLoss(logp, old_logp, adv_f.index_select(0, idx), ppo.clip);
-      const auto critic = (v - ret_target.index_select(0, idx)).pow(2).mean();
-      const auto bounds = BoundsLoss(mu);
-      const auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
+      const auto chunk = perm.slice(0, k * mb, (k + 1) * mb);
+      const auto idx = local_of(chunk);
+      const double share = static_cast<double>(idx.size(0)) / static_cast<double>(mb);
       m.optim->zero_grad();
-      loss.backward();
-      a_loss += actor.item<double>();
-      c_loss += critic.item<double>();
-      b_loss += bounds.item<double>();
-      clipf += ClipFraction(logp.detach(), old_logp, ppo.clip);
+      if (idx.size(0) > 0) {
+        const auto o = obs_f.index_select(0, idx);
+        const auto norm_o = norm_obs_f.index_select(0, idx);
+        const auto mu = m.ac->Mean(norm_o, o);
+        const auto v = m.ac->Value(norm_o, o);
+        const auto logp = GaussianLogProb(act_f.index_select(0, idx), mu, m.ac->log_std());
+        const auto old_logp = logp_f.index_select(0, idx);
+        const auto actor =
+            ClippedSurrogateLoss(logp, old_logp, adv_f.index_select(0, idx), ppo.clip);
+        const auto critic = (v - ret_target.index_select(0, idx)).pow(2).mean();
+        const auto bounds = BoundsLoss(mu);
+        const auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
+        (m.world == 1 ? loss : loss * share).backward();
+        a_loss += actor.item<double>() * share;
+        c_loss += critic.item<double>() * share;
+        b_loss += bounds.item<double>() * share;
+        clipf += ClipFraction(logp.detach(), old_logp, ppo.clip) * share;
+      }
       ppo_s += Since(t_phase);
       if (m.use_amp) {
         t_phase = Clock::now();
-        const int64_t na = std::min<int64_t>(ampc.batch_size, mb);
-        const auto agent_idx = idx.slice(0, 0, na);
-        auto neg = amp_flat_norm.index_select(0, agent_idx);
-        auto neg_style = style_flat.index_select(0, agent_idx);
-        if (m.replay->size() > 0) {
-          auto [rep, rep_style] = m.replay->Sample(na, m.rng);
-          neg = torch::cat({neg, m.amp_norm->Normalize(rep)});
-          neg_style = torch::cat({neg_style, rep_style});
+        const auto agent_idx = local_of(chunk.slice(0, 0, na_all));
+        const int64_t na = agent_idx.size(0);
+        const double dshare = static_cast<double>(na) / static_cast<double>(na_all);
+        if (na > 0) {
+          auto neg = amp_flat_norm.index_select(0, agent_idx);
+          auto neg_style = style_flat.index_select(0, agent_idx);
+          if (m.replay->size() > 0) {
+            auto [rep, rep_style] = m.replay->Sample(na, m.amp_rng);
+            neg = torch::cat({neg, m.amp_norm->Normalize(rep)});
+            neg_style = torch::cat({neg_style, rep_style});
+          }
+          std::vector<int64_t> demo_idx(na);
+          for (auto& i : demo_idx) i = m.amp_rng.UniformInt(m.demo_pool.size(0));
+          const auto di = torch::tensor(demo_idx, torch::kInt64);
+          const auto pos = m.amp_norm->Normalize(m.demo_pool.index_select(0, di));
+          const auto pos_style = m.demo_pool_styles.index_select(0, di);
+          if (m.style_dim > 0 && ampc.mismatch_fraction > 0 && m.style_table.size(0) > 1) {
+            // SIMS conditional negatives: real motion paired with another clip's embedding.
+            const int64_t nm = static_cast<int64_t>(ampc.mismatch_fraction * na);
+            std::vector<int64_t> wrong(nm);
+            const int64_t s = m.style_table.size(0);
+            const int64_t* true_ids = pos_style.data_ptr<int64_t>();
+            for (int64_t i = 0; i < nm; ++i)
+              wrong[i] = (true_ids[i] + 1 + m.amp_rng.UniformInt(s - 1)) % s;
+            neg = torch::cat({neg, pos.slice(0, 0, nm)});
+            neg_style = torch::cat({neg_style, torch::tensor(wrong, torch::kInt64)});
+          }
+          const auto dl =
+              DiscriminatorLoss(m.disc, pos, m.StyleOf(pos_style), neg, m.StyleOf(neg_style), ampc);
+          (ampc.disc_coef * (m.world == 1 ? dl.total : dl.total * dshare)).backward();
+          d_loss += dl.classification * dshare;
+          gp += dl.grad_penalty * dshare;
+          acc_d += dl.demo_accuracy * dshare;
+          acc_a += dl.agent_accuracy * dshare;
+          disc_samples += pos.size(0) + neg.size(0);
         }
-        std::vector<int64_t> demo_idx(na);
-        for (auto& i : demo_idx) i = m.rng.UniformInt(m.demo_pool.size(0));
-        const auto di = torch::tensor(demo_idx, torch::kInt64);
-        const auto pos = m.amp_norm->Normalize(m.demo_pool.index_select(0, di));
-        const auto pos_style = m.demo_pool_styles.index_select(0, di);
-        if (m.style_dim > 0 && ampc.mismatch_fraction > 0 && m.style_table.size(0) > 1) {
-          // SIMS conditional negatives: real motion paired with another clip's embedding.
-          const int64_t nm = static_cast<int64_t>(ampc.mismatch_fraction * na);
-          std::vector<int64_t> wrong(nm);
-          const int64_t s = m.style_table.size(0);
-          const int64_t* true_ids = pos_style.data_ptr<int64_t>();
-          for (int64_t i = 0; i < nm; ++i)
-            wrong[i] = (true_ids[i] + 1 + m.rng.UniformInt(s - 1)) % s;
-          neg = torch::cat({neg, pos.slice(0, 0, nm)});
-          neg_style = torch::cat({neg_style, torch::tensor(wrong, torch::kInt64)});
-        }
-        const auto dl =
-            DiscriminatorLoss(m.disc, pos, m.StyleOf(pos_style), neg, m.StyleOf(neg_style), ampc);
-        (ampc.disc_coef * dl.total).backward();
-        d_loss += dl.classification;
-        gp += dl.grad_penalty;
-        acc_d += dl.demo_accuracy;
-        acc_a += dl.agent_accuracy;
-        disc_samples += pos.size(0) + neg.size(0);
         disc_s += Since(t_phase);
       }
       t_phase = Clock::now();
+      m.ReduceGradients(params);
       if (ppo.grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, ppo.grad_norm);
       m.optim->step();
       ppo_s += Since(t_phase);
@@ -406,19 +575,44 @@ IterationStats Trainer::RunIteration() {
 
   // ---- buffers and normalisers for the next iteration ---------------------------------------
   if (m.use_amp) {
-    m.replay->Add(amp_flat, style_flat, ampc.replay_keep_prob, m.rng);
-    m.amp_norm->Update(amp_flat);
+    m.replay->Add(amp_flat, style_flat, ampc.replay_keep_prob, m.amp_rng);
+    m.UpdateNorm(m.amp_norm, amp_flat);
   }
-  m.obs_norm->Update(obs_f);
+  m.UpdateNorm(m.obs_norm, obs_f);
   ++m.iteration;
 
   // ---- statistics -------------------------------------------------------------------------
+  // Sums over all ranks, so every rank (and rank 0's log) reports the whole run's figures.
+  double sums[] = {ret_sum,
+                   len_sum,
+                   succ_sum,
+                   fall_sum,
+                   static_cast<double>(episodes),
+                   m.rew_buf.sum().item<double>(),
+                   style_rew.sum().item<double>(),
+                   reward.sum().item<double>(),
+                   a_loss,
+                   c_loss,
+                   b_loss,
+                   d_loss,
+                   gp,
+                   acc_d,
+                   acc_a,
+                   clipf};
+  if (m.comm) m.comm->AllReduceSum(sums, static_cast<int64_t>(std::size(sums)));
+  std::tie(ret_sum, len_sum, succ_sum, fall_sum) =
+      std::make_tuple(sums[0], sums[1], sums[2], sums[3]);
+  episodes = static_cast<int64_t>(sums[4]);
+  std::tie(a_loss, c_loss, b_loss, d_loss, gp, acc_d, acc_a, clipf) =
+      std::make_tuple(sums[8], sums[9], sums[10], sums[11], sums[12], sums[13], sums[14], sums[15]);
+  const double batch = static_cast<double>(T * N * m.world);
+  if (m.comm && m.iteration % m.check_every == 0) m.CheckParametersAgree();
   const double s = std::max<int64_t>(steps, 1);
   st.iteration = m.iteration;
   st.samples = m.samples;
-  st.task_reward = m.rew_buf.mean().item<double>();
-  st.style_reward = style_rew.mean().item<double>();
-  st.total_reward = reward.mean().item<double>();
+  st.task_reward = sums[5] / batch;
+  st.style_reward = sums[6] / batch;
+  st.total_reward = sums[7] / batch;
   st.episodes = episodes;
   st.episode_return = episodes ? ret_sum / episodes : std::nan("");
   st.episode_length = episodes ? len_sum / episodes : std::nan("");
@@ -433,10 +627,11 @@ IterationStats Trainer::RunIteration() {
   st.disc_acc_agent = acc_a / s;
   st.clip_fraction = clipf / s;
   st.env_samples_per_s = static_cast<double>(T * N) / collect_s;
-  st.train_samples_per_s = static_cast<double>(steps * mb) / std::max(st.update_seconds, 1e-9);
+  const int64_t mb_rank = mb / m.world;  // this rank's FLOPs and samples
+  st.train_samples_per_s = static_cast<double>(steps * mb_rank) / std::max(st.update_seconds, 1e-9);
   // Forward + backward ≈ 3 × 2 × MACs per sample for each network (the discriminator also
   // pays a double-backward for the gradient penalty on its demo half, ≈ 2× more).
-  const double ac_flop = 6.0 * LinearMacs(*m.ac) * static_cast<double>(steps * mb);
+  const double ac_flop = 6.0 * LinearMacs(*m.ac) * static_cast<double>(steps * mb_rank);
   const double disc_flop =
       m.use_amp ? 6.0 * LinearMacs(*m.disc) * static_cast<double>(disc_samples) * 1.5 : 0.0;
   st.update_gflop = (ac_flop + disc_flop) * 1e-9;
@@ -503,15 +698,28 @@ void LoadPolicyWeights(torch::serialize::InputArchive& archive, ActorCritic& ac,
 }
 }  // namespace
 
-void Trainer::SaveCheckpoint(const std::filesystem::path& path) const {
-  const auto& m = *impl_;
-  torch::serialize::OutputArchive archive;
-  torch::serialize::OutputArchive ac, norms, opt;
+namespace {
+torch::Tensor RngTensor(const Rng& rng) {
+  const auto s = rng.state();
+  return torch::tensor({static_cast<int64_t>(s[0]), static_cast<int64_t>(s[1]),
+                        static_cast<int64_t>(s[2]), static_cast<int64_t>(s[3])},
+                       torch::kInt64);
+}
+void SetRng(Rng& rng, const torch::Tensor& t) {
+  rng.set_state(
+      {static_cast<uint64_t>(t[0].item<int64_t>()), static_cast<uint64_t>(t[1].item<int64_t>()),
+       static_cast<uint64_t>(t[2].item<int64_t>()), static_cast<uint64_t>(t[3].item<int64_t>())});
+}
+}  // namespace
+
+// What every rank shares: networks, normalisers, optimiser, minibatch order and counters.
+void Trainer::Impl::WriteLearnerState(torch::serialize::OutputArchive& archive) const {
+  const auto& m = *this;
+  torch::serialize::OutputArchive ac, norms, vn, opt;
   m.ac->save(ac);
   archive.write("actor_critic", ac);
   m.obs_norm->save(norms);
   archive.write("obs_norm", norms);
-  torch::serialize::OutputArchive vn;
   m.value_norm->save(vn);
   archive.write("value_norm", vn);
   if (m.use_amp) {
@@ -520,25 +728,65 @@ void Trainer::SaveCheckpoint(const std::filesystem::path& path) const {
     archive.write("disc", d);
     m.amp_norm->save(an);
     archive.write("amp_norm", an);
+  }
+  m.optim->save(opt);
+  archive.write("optimizer", opt);
+  WriteTensor(archive, "rng", RngTensor(m.rng));
+  WriteTensor(archive, "counters", torch::tensor({m.iteration, m.samples}, torch::kInt64));
+  WriteTensor(archive, "config", StringTensor(ConfigToJson(m.cfg).dump()));
+}
+
+void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
+                                     const std::string& source) {
+  auto& m = *this;
+  const auto saved_cfg = nlohmann::json::parse(TensorString(ReadTensor(archive, "config")));
+  if (saved_cfg["network"] != ConfigToJson(m.cfg.network))
+    ThrowInputError(source, "network", "the same network sizes as the current config",
+                    saved_cfg["network"].dump());
+  torch::serialize::InputArchive ac, on, vn, opt;
+  archive.read("actor_critic", ac);
+  m.ac->load(ac);
+  archive.read("obs_norm", on);
+  m.obs_norm->load(on);
+  archive.read("value_norm", vn);
+  m.value_norm->load(vn);
+  if (m.use_amp) {
+    torch::serialize::InputArchive d, an;
+    archive.read("disc", d);
+    m.disc->load(d);
+    archive.read("amp_norm", an);
+    m.amp_norm->load(an);
+  }
+  archive.read("optimizer", opt);
+  m.optim->load(opt);
+  SetRng(m.rng, ReadTensor(archive, "rng"));
+  const auto counters = ReadTensor(archive, "counters");
+  m.iteration = counters[0].item<int64_t>();
+  m.samples = counters[1].item<int64_t>();
+}
+
+void Trainer::SaveCheckpoint(const std::filesystem::path& path) const {
+  const auto& m = *impl_;
+  torch::serialize::OutputArchive archive;
+  m.WriteLearnerState(archive);
+  // This rank's own state: replay buffer, sampling streams, episodes, environments. With
+  // ranks, rank 0 writes the checkpoint; the others restart their environments on resume.
+  if (m.use_amp) {
     WriteTensor(archive, "replay_data", m.replay->data());
     WriteTensor(archive, "replay_styles", m.replay->styles());
     WriteTensor(archive, "replay_size", torch::tensor({m.replay->size()}, torch::kInt64));
   }
-  m.optim->save(opt);
-  archive.write("optimizer", opt);
-  const auto rng = m.rng.state();
-  WriteTensor(archive, "rng",
-              torch::tensor({static_cast<int64_t>(rng[0]), static_cast<int64_t>(rng[1]),
-                             static_cast<int64_t>(rng[2]), static_cast<int64_t>(rng[3])},
-                            torch::kInt64));
-  WriteTensor(archive, "counters", torch::tensor({m.iteration, m.samples}, torch::kInt64));
+  WriteTensor(archive, "amp_rng", RngTensor(m.amp_rng));
+  std::vector<torch::Tensor> noise;
+  for (const auto& r : m.noise_rng) noise.push_back(RngTensor(r));
+  WriteTensor(archive, "noise_rng", torch::stack(noise));
+  WriteTensor(archive, "world_size", torch::tensor({static_cast<int64_t>(m.world)}, torch::kInt64));
   WriteTensor(archive, "ep_return", torch::tensor(m.ep_return, torch::kFloat64));
   WriteTensor(archive, "ep_len", torch::tensor(m.ep_len, torch::kFloat64));
   WriteTensor(
       archive, "ep_success",
       torch::tensor(std::vector<int64_t>(m.ep_success.begin(), m.ep_success.end()), torch::kInt64));
   WriteTensor(archive, "env_state", StringTensor(m.env->SaveState()));
-  WriteTensor(archive, "config", StringTensor(ConfigToJson(m.cfg).dump()));
   SaveArchiveAtomically(archive, path);
 }
 
@@ -549,23 +797,8 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
   try {
     torch::serialize::InputArchive archive;
     archive.load_from(path.string());
-    const auto saved_cfg = nlohmann::json::parse(TensorString(ReadTensor(archive, "config")));
-    if (saved_cfg["network"] != ConfigToJson(m.cfg.network))
-      ThrowInputError(path.string(), "network", "the same network sizes as the current config",
-                      saved_cfg["network"].dump());
-    torch::serialize::InputArchive ac, on, vn, opt;
-    archive.read("actor_critic", ac);
-    m.ac->load(ac);
-    archive.read("obs_norm", on);
-    m.obs_norm->load(on);
-    archive.read("value_norm", vn);
-    m.value_norm->load(vn);
+    m.ReadLearnerState(archive, path.string());
     if (m.use_amp) {
-      torch::serialize::InputArchive d, an;
-      archive.read("disc", d);
-      m.disc->load(d);
-      archive.read("amp_norm", an);
-      m.amp_norm->load(an);
       const auto data = ReadTensor(archive, "replay_data");
       if (data.sizes() != m.replay->data().sizes())
         ThrowInputError(path.string(), "replay_data", "a replay buffer of the configured size",
@@ -574,16 +807,11 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
       m.replay->styles().copy_(ReadTensor(archive, "replay_styles"));
       m.replay->set_size(ReadTensor(archive, "replay_size")[0].item<int64_t>());
     }
-    archive.read("optimizer", opt);
-    m.optim->load(opt);
-    const auto rng = ReadTensor(archive, "rng");
-    m.rng.set_state({static_cast<uint64_t>(rng[0].item<int64_t>()),
-                     static_cast<uint64_t>(rng[1].item<int64_t>()),
-                     static_cast<uint64_t>(rng[2].item<int64_t>()),
-                     static_cast<uint64_t>(rng[3].item<int64_t>())});
-    const auto counters = ReadTensor(archive, "counters");
-    m.iteration = counters[0].item<int64_t>();
-    m.samples = counters[1].item<int64_t>();
+    // Checkpoints from before per-environment noise streams keep the fresh ones.
+    torch::Tensor t;
+    if (archive.try_read("amp_rng", t, /*is_buffer=*/true)) SetRng(m.amp_rng, t);
+    if (archive.try_read("noise_rng", t, /*is_buffer=*/true) && t.size(0) == m.n)
+      for (int64_t i = 0; i < m.n; ++i) SetRng(m.noise_rng[i], t[i]);
     const auto er = ReadTensor(archive, "ep_return"), el = ReadTensor(archive, "ep_len"),
                es = ReadTensor(archive, "ep_success");
     if (er.numel() != m.n)
@@ -600,6 +828,26 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
   } catch (const std::exception& e) {
     ThrowInputError(path.string(), "", "a checkpoint written by this trainer configuration",
                     e.what());
+  }
+}
+
+void Trainer::Synchronize() {
+  auto& m = *impl_;
+  if (!m.comm) return;
+  std::string bytes;
+  if (m.rank == 0) {
+    torch::serialize::OutputArchive archive;
+    m.WriteLearnerState(archive);
+    std::ostringstream out;
+    archive.save_to(out);
+    bytes = out.str();
+  }
+  m.comm->Broadcast(&bytes, 0);
+  if (m.rank != 0) {
+    torch::serialize::InputArchive archive;
+    std::istringstream in(bytes);
+    archive.load_from(in);
+    m.ReadLearnerState(archive, "rank 0's learner state");
   }
 }
 

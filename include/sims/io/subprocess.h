@@ -20,6 +20,7 @@ struct SubprocessOptions {
   bool stderr_to_stdout = false;       ///< Send stderr wherever stdout goes (wins over file).
   std::vector<int> parent_writes_fds;  ///< Extra child fds (≥ 3) the child reads, parent writes.
   std::vector<int> parent_reads_fds;   ///< Extra child fds (≥ 3) the child writes, parent reads.
+  std::vector<std::string> env;  ///< "NAME=VALUE" set (or replaced) in the child's environment.
 };
 
 /// A running child process. The destructor closes the pipes, kills the child if it is still

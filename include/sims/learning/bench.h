@@ -3,8 +3,13 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "sims/learning/distributed.h"
 
 namespace sims::learning {
 
@@ -19,6 +24,10 @@ struct TrainBenchOptions {
   int iterations = 0;            ///< Measured iterations (0 = the config's checkpoint_every).
   int warmup = 2;                ///< Iterations run first and not measured.
   int num_envs = 0;              ///< Override env.num_envs (0 = the config's).
+  /// Run as one rank of a data-parallel run (samples count every rank's environments); the
+  /// result then also holds all-reduce traffic per iteration and measured all-reduce times.
+  std::shared_ptr<Communicator> comm;
+  bool references = true;  ///< Also measure raw mj_step and sgemm (the scaling runs skip them).
 };
 
 /// Runs real train_policy iterations (RunTraining into a temporary directory: CSV rows,
@@ -27,6 +36,21 @@ struct TrainBenchOptions {
 /// other, the env rate against raw mj_step on copies of the skill's reset states and the
 /// update's FLOP/s against sgemm, all measured in this run.
 nlohmann::json RunTrainBenchmark(const TrainBenchOptions& options);
+
+/// What bench_train --ranks measures.
+struct RankBenchOptions {
+  TrainBenchOptions train;          ///< Each process's run (one thread per process).
+  int ranks = 2;                    ///< Processes of the data-parallel run.
+  std::vector<std::string> worker;  ///< argv that runs one worker; "--worker-out FILE" is added.
+  std::vector<int> project = {8, 32, 64};  ///< Core counts of the projection table.
+};
+
+/// Runs the config as 1 process, as `ranks` independent processes side by side, and as one
+/// `ranks`-rank data-parallel run (workers on 127.0.0.1, one thread each); returns samples/s of
+/// each, efficiency = data-parallel samples/s over the independent processes' total (what the
+/// cores allow, so only synchronisation is charged), the all-reduce traffic and timings, and a
+/// projection to larger rank counts from those measured inputs.
+nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& options);
 
 /// Best-of GFLOP/s of an n×n×n float matmul in libtorch.
 double MeasureSgemmGflops(int n = 1024, int repeats = 5);

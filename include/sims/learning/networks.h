@@ -20,6 +20,11 @@ class RunningMeanStdImpl : public torch::nn::Module {
   RunningMeanStdImpl(int64_t size, double clip = 5.0);
   /// Folds a batch [B, size] into the statistics (parallel Welford merge, float64).
   void Update(const torch::Tensor& x);
+  /// Folds a batch given by its size, mean and population variance (float64 [size]); what
+  /// Update() does after computing them, and what ranks do with all-reduced moments.
+  void Merge(double n, const torch::Tensor& batch_mean, const torch::Tensor& batch_var);
+  /// Feature count.
+  int64_t size() const { return mean_.size(0); }
   /// (x − mean) / sqrt(var + eps), clamped.
   torch::Tensor Normalize(const torch::Tensor& x) const;
   /// x · sqrt(var + eps) + mean (for value de-normalisation).

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "sims/learning/config.h"
+#include "sims/learning/distributed.h"
 #include "sims/learning/trainer.h"
 #include "sims/sim/env.h"
 #include "sims/task/skill.h"
@@ -54,6 +55,12 @@ struct TrainOptions {
   std::filesystem::path init_policy;
   /// Called after each iteration is logged (benchmarks read the timing through it).
   std::function<void(const IterationStats&, const IterationTiming&)> on_iteration;
+  /// Data-parallel run when set: this process is one rank. Rank 0 resolves the config and
+  /// alone reads and writes out_dir (config, log, checkpoints, report); every rank runs
+  /// env.num_envs environments, so the batch is world_size times larger.
+  std::shared_ptr<Communicator> comm;
+  /// Parameter checksum interval across ranks (iterations).
+  int check_every = 10;
 };
 
 /// The training configs train_policy stores in a policy's metadata ("extra").

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sims/learning/config.h"
+#include "sims/learning/distributed.h"
 #include "sims/learning/vec_env.h"
 
 namespace sims::learning {
@@ -48,8 +49,14 @@ struct IterationStats {
 class Trainer {
  public:
   /// `demo` may be null when AMP is disabled. Initialises networks from config.seed.
+  /// With `comm` (data-parallel), this trainer is one rank: `env` holds this rank's share of
+  /// the environments (same count on every rank; global env id = rank × num_envs + i), batch
+  /// sizes in `config` are per rank, rank 0's weights are broadcast, gradients and normaliser
+  /// statistics are all-reduced, and a parameter checksum is compared every `check_every`
+  /// iterations. The update equals that of one process over all ranks' environments.
   Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> demo,
-          const LearnerConfig& config);
+          const LearnerConfig& config, std::shared_ptr<Communicator> comm = nullptr,
+          int check_every = 10);
   ~Trainer();
   Trainer(const Trainer&) = delete;
   Trainer& operator=(const Trainer&) = delete;
@@ -63,6 +70,9 @@ class Trainer {
   void SaveCheckpoint(const std::filesystem::path& path) const;
   /// Restores SaveCheckpoint() output; throws sims::Error naming the file on mismatch.
   void LoadCheckpoint(const std::filesystem::path& path);
+  /// Copies rank 0's learner state (networks, normalisers, optimiser, counters) to every
+  /// rank; call on all ranks after rank 0 alone loaded a checkpoint or policy. No-op alone.
+  void Synchronize();
   /// Starts from another skill's exported policy: actor, critic and observation normaliser
   /// (same observation layout and network sizes); the rest keeps its fresh state.
   void InitFromPolicy(const std::filesystem::path& policy_file);
