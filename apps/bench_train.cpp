@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   std::string config = sims::ConfigPath("skills/sit.json").string();
   std::string worker_out;
   bool json = false;
-  int ranks = 0;
+  int ranks = 0, repeats = 2;
   sims::AppFlags flags;
   app.add_option("--config", config, "training config (default: sit)");
   app.add_option("--iterations", o.iterations, "measured iterations (default: checkpoint_every)")
@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
                  "data-parallel scaling: 1 process, N side by side, and an N-rank run on "
                  "127.0.0.1, one thread each")
       ->check(CLI::Range(2, 1024));
+  app.add_option("--repeats", repeats, "--ranks: rounds of the three runs (means reported)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--worker-out", worker_out, "(internal) run one worker, write its JSON here")
       ->group("");
   sims::AddAppFlags(&app, &flags);
@@ -54,6 +56,7 @@ int main(int argc, char** argv) {
       sims::learning::RankBenchOptions r;
       r.train = o;
       r.ranks = ranks;
+      r.repeats = repeats;
       r.worker = {std::filesystem::read_symlink("/proc/self/exe").string(),
                   "--config",
                   config,

@@ -86,6 +86,7 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   options.comm = o.comm;
   const int world = o.comm ? o.comm->world_size() : 1;
   int64_t bytes_before = 0, calls_before = 0;
+  double collective_before = 0;
   struct Sums {
     double interval = 0, env = 0, inference = 0, disc = 0, ppo = 0, logging = 0, gflop = 0;
     double update = 0;
@@ -95,7 +96,11 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   int seen = 0;
   options.on_iteration = [&](const IterationStats& s, const IterationTiming& t) {
     if (++seen <= warmup) {
-      if (o.comm) bytes_before = o.comm->bytes_reduced(), calls_before = o.comm->reduce_calls();
+      if (o.comm) {
+        bytes_before = o.comm->bytes_reduced();
+        calls_before = o.comm->reduce_calls();
+        collective_before = o.comm->collective_seconds();
+      }
       return;
     }
     sum.interval += t.interval_seconds;
@@ -138,12 +143,12 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
     result["allreduce_calls_per_iteration"] = (o.comm->reduce_calls() - calls_before) * per_it;
     const int64_t grad_bytes = o.comm->max_reduce_bytes();
     result["gradient_bytes"] = grad_bytes;
-    // All-reduce time of a small message (latency) and of the flattened gradients, measured
-    // between these ranks now (median of 31).
+    // All-reduce times between these ranks now: medians of 41 calls at a small size, a
+    // quarter of the gradients and the flattened gradients (what a training step sends).
     auto time_allreduce = [&](int64_t floats) {
       std::vector<float> buf(std::max<int64_t>(floats, 1), 1.0f);
       std::vector<double> t;
-      for (int r = 0; r < 36; ++r) {
+      for (int r = 0; r < 46; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
         o.comm->AllReduceSum(buf.data(), static_cast<int64_t>(buf.size()));
         if (r >= 5)
@@ -152,20 +157,13 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
       std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
       return t[t.size() / 2];
     };
-    result["allreduce_small_bytes"] = 4096;
-    result["allreduce_small_seconds"] = time_allreduce(1024);
-    result["allreduce_gradient_seconds"] = time_allreduce(grad_bytes / 4);
+    nlohmann::json sizes = nlohmann::json::array();
+    for (int64_t bytes : {int64_t{4096}, grad_bytes / 4, grad_bytes})
+      sizes.push_back({{"bytes", bytes}, {"seconds", time_allreduce(bytes / 4)}});
+    result["allreduce_timings"] = sizes;
+    result["collective_seconds_per_iteration"] =
+        (o.comm->collective_seconds() - collective_before) * per_it;
   }
-  if (!o.references) return result;
-
-  // References measured in this run: raw mj_step on the skill's own scene, and sgemm.
-  auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
-  sim::BatchedEnv ref_env(setup.context.humanoid, config.env, setup.skill);
-  const double raw = sim::RawStepsPerSecondFrom(ref_env, ThreadCount(), 30);
-  const double sgemm = MeasureSgemmGflops();
-  const double substeps = config.env.substeps;
-  const double ceiling = raw / substeps;
-  const double samples = static_cast<double>(sum.samples);
   const double per_it = 1.0 / measured;
   const double other = sum.interval - sum.env - sum.inference - sum.disc - sum.ppo - sum.logging;
   auto share = [&](double x) { return x / sum.interval; };
@@ -183,8 +181,18 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
                    {"discriminator", sum.disc * per_it},
                    {"ppo_update", sum.ppo * per_it},
                    {"logging", sum.logging * per_it},
-                   {"other", other * per_it}}},
-                 {"env_samples_per_s", samples / sum.env},
+                   {"other", other * per_it}}}});
+  if (!o.references) return result;
+
+  // References measured in this run: raw mj_step on the skill's own scene, and sgemm.
+  auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
+  sim::BatchedEnv ref_env(setup.context.humanoid, config.env, setup.skill);
+  const double raw = sim::RawStepsPerSecondFrom(ref_env, ThreadCount(), 30);
+  const double sgemm = MeasureSgemmGflops();
+  const double substeps = config.env.substeps;
+  const double ceiling = raw / substeps;
+  const double samples = static_cast<double>(sum.samples);
+  result.update({{"env_samples_per_s", samples / sum.env},
                  {"raw_mj_step_per_s", raw},
                  {"raw_ceiling_samples_per_s", ceiling},
                  {"env_vs_raw", samples / sum.env / ceiling},
@@ -260,41 +268,57 @@ nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& o) {
       std::filesystem::temp_directory_path() / ("sims_bench_ranks_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  nlohmann::json single, ranked;
-  std::vector<nlohmann::json> indep;
+  // Rounds alternate the three runs so that a slow phase of a shared machine hits all of
+  // them alike; the figures are means over rounds.
+  nlohmann::json single, ranked, rounds = nlohmann::json::array();
+  std::vector<nlohmann::json> indep, ranks;
+  double s1 = 0, s_indep = 0, s_ranked = 0;
+  const int repeats = std::max(o.repeats, 1);
   try {
-    single = RunWorkers(o, 1, false, dir)[0];
-    indep = RunWorkers(o, o.ranks, false, dir);
-    ranked = RunWorkers(o, o.ranks, true, dir)[0];
+    for (int round = 0; round < repeats; ++round) {
+      single = RunWorkers(o, 1, false, dir)[0];
+      indep = RunWorkers(o, o.ranks, false, dir);
+      ranks = RunWorkers(o, o.ranks, true, dir);
+      ranked = ranks[0];
+      double a = single["samples_per_s"].get<double>(), b = 0;
+      for (const auto& r : indep) b += r["samples_per_s"].get<double>();
+      const double c = ranked["samples_per_s"].get<double>();
+      rounds.push_back({{"single_samples_per_s", a},
+                        {"independent_samples_per_s", b},
+                        {"ranked_samples_per_s", c},
+                        {"efficiency", c / b}});
+      s1 += a / repeats;
+      s_indep += b / repeats;
+      s_ranked += c / repeats;
+    }
   } catch (...) {
     std::filesystem::remove_all(dir);
     throw;
   }
   std::filesystem::remove_all(dir);
-
-  const double s1 = single["samples_per_s"].get<double>();
-  double s_indep = 0;
-  for (const auto& r : indep) s_indep += r["samples_per_s"].get<double>();
-  const double s_ranked = ranked["samples_per_s"].get<double>();
   const double indep_speedup = s_indep / s1, ranked_speedup = s_ranked / s1;
 
   // Projection: each rank computes as the single process did; per iteration it adds its
-  // all-reduces, modelled as a ring: T(P, B) = 2(P−1)·α + 2(P−1)/P · B/β, with α from the
-  // small message and β from the gradient-sized one, both measured above between 2 ranks.
+  // all-reduces, modelled as Gloo's ring: T(P, B) = 2(P−1)·α + 2(P−1)/P · B/β. On 2 ranks
+  // T = 2α + B/β, so a least-squares line through the measured (bytes, seconds) gives α and β.
   const double batch_rank =
       static_cast<double>(single["horizon"].get<int>()) * single["num_envs"].get<int>();
   const double t_iter = batch_rank / s1;
-  const double t_small = ranked["allreduce_small_seconds"].get<double>();
-  const double t_grad = ranked["allreduce_gradient_seconds"].get<double>();
-  const double grad_bytes = ranked["gradient_bytes"].get<double>();
   const double calls = ranked["allreduce_calls_per_iteration"].get<double>();
   const double bytes_it = ranked["allreduce_bytes_per_iteration"].get<double>();
-  const double alpha = t_small / 2.0;
-  const double beta = grad_bytes / std::max(t_grad - 2.0 * alpha, 1e-9);
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+  for (const auto& m : ranked["allreduce_timings"]) {
+    const double x = m["bytes"].get<double>(), y = m["seconds"].get<double>();
+    sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
+  }
+  const double slope = std::max((n * sxy - sx * sy) / std::max(n * sxx - sx * sx, 1e-30), 0.0);
+  const double intercept = std::max((sy - slope * sx) / n, 0.0);
+  const double alpha = intercept / 2.0;
+  const double inv_beta = slope;  // seconds per byte; 0 when bandwidth did not show
   nlohmann::json table = nlohmann::json::array();
   for (int p : o.project) {
     const double steps = 2.0 * (p - 1);
-    const double t_comm = calls * steps * alpha + steps / p * bytes_it / beta;
+    const double t_comm = calls * steps * alpha + steps / p * bytes_it * inv_beta;
     const double t = t_iter + t_comm;
     table.push_back({{"ranks", p},
                      {"samples_per_s", p * batch_rank / t},
@@ -312,20 +336,20 @@ nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& o) {
           {"ranked_samples_per_s", s_ranked},
           {"ranked_speedup", ranked_speedup},
           {"efficiency", s_ranked / s_indep},
+          {"rounds", rounds},
           {"allreduce",
            {{"calls_per_iteration", calls},
             {"bytes_per_iteration", bytes_it},
-            {"gradient_bytes", grad_bytes},
-            {"small_seconds", t_small},
-            {"gradient_seconds", t_grad},
+            {"gradient_bytes", ranked["gradient_bytes"]},
+            {"timings", ranked["allreduce_timings"]},
             {"latency_alpha_seconds", alpha},
-            {"bandwidth_bytes_per_s", beta}}},
+            {"bandwidth_bytes_per_s", inv_beta > 0 ? 1.0 / inv_beta : 0.0}}},
           {"seconds_per_iteration_single", t_iter},
           {"projection_model",
            "t(P) = t_iter + calls*2(P-1)*alpha + 2(P-1)/P*bytes/beta; 1 thread per rank, "
            "excludes the machine's own core sharing (independent_speedup)"},
           {"projection", table},
-          {"workers", {{"single", single}, {"independent", indep}, {"ranked_rank0", ranked}}}};
+          {"workers", {{"single", single}, {"independent", indep}, {"ranked", ranks}}}};
 }
 
 }  // namespace sims::learning

@@ -56,6 +56,19 @@ class GlooCommunicator : public Communicator {
   void AllReduceSum(double* data, int64_t n) override {
     Reduce(torch::from_blob(data, {n}, torch::kFloat64), n * 8);
   }
+  void StartAllReduceSum(float* data, int64_t n) override {
+    Guard("all-reduce", [&] {
+      std::vector<at::Tensor> ts{torch::from_blob(data, {n}, torch::kFloat32)};
+      pending_.push_back(group_->allreduce(ts));
+    });
+    Count(n * 4);
+  }
+  void WaitAll() override {
+    Guard("all-reduce", [&] {
+      for (auto& w : pending_) w->wait();
+      pending_.clear();
+    });
+  }
   void Broadcast(float* data, int64_t n, int root) override {
     Cast(torch::from_blob(data, {n}, torch::kFloat32), root);
   }
@@ -73,6 +86,7 @@ class GlooCommunicator : public Communicator {
   int64_t bytes_reduced() const override { return bytes_; }
   int64_t reduce_calls() const override { return calls_; }
   int64_t max_reduce_bytes() const override { return max_bytes_; }
+  double collective_seconds() const override { return seconds_; }
 
  private:
   std::string Where() const {
@@ -84,8 +98,10 @@ class GlooCommunicator : public Communicator {
   // Gloo reports a dead or silent peer as c10::Error; the run ends with one project error.
   template <class F>
   void Guard(const std::string& what, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
     try {
       f();
+      seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     } catch (const Error&) {
       throw;
     } catch (const std::exception& e) {
@@ -103,6 +119,10 @@ class GlooCommunicator : public Communicator {
       std::vector<at::Tensor> ts{t};
       group_->allreduce(ts)->wait();
     });
+    Count(bytes);
+  }
+
+  void Count(int64_t bytes) {
     bytes_ += bytes;
     max_bytes_ = std::max(max_bytes_, bytes);
     ++calls_;
@@ -119,7 +139,9 @@ class GlooCommunicator : public Communicator {
 
   DistributedConfig config_;
   c10::intrusive_ptr<c10d::ProcessGroupGloo> group_;
+  std::vector<c10::intrusive_ptr<c10d::Work>> pending_;
   int64_t bytes_ = 0, calls_ = 0, max_bytes_ = 0;
+  double seconds_ = 0;
 };
 
 }  // namespace

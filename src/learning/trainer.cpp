@@ -134,18 +134,19 @@ struct Trainer::Impl {
     norm->Merge(count, mean, var);
   }
 
-  // One flattened all-reduce of every gradient (actor, critic, discriminator) per minibatch:
-  // each rank's loss is already weighted by its share of the global minibatch, so the sum is
-  // the gradient of the global loss.
-  void ReduceGradients(const std::vector<torch::Tensor>& params) {
-    if (!comm) return;
-    torch::NoGradGuard guard;
+  // Gradients are all-reduced as two flat buckets per minibatch: the actor-critic's starts as
+  // soon as its backward pass ends and runs while the discriminator computes; each rank's
+  // loss is already weighted by its share of the global minibatch, so the sums are the
+  // gradients of the global loss.
+  torch::Tensor ac_grads, disc_grads;
+  static torch::Tensor FlattenGrads(const std::vector<torch::Tensor>& params) {
     std::vector<torch::Tensor> flat;
     flat.reserve(params.size());
     for (const auto& p : params)
       flat.push_back(p.grad().defined() ? p.grad().reshape({-1}) : torch::zeros({p.numel()}));
-    auto all = torch::cat(flat);
-    AllReduce(all);
+    return torch::cat(flat);
+  }
+  static void ScatterGrads(const std::vector<torch::Tensor>& params, const torch::Tensor& all) {
     int64_t off = 0;
     for (auto p : params) {
       const auto g = all.slice(0, off, off + p.numel()).view(p.sizes());
@@ -155,6 +156,20 @@ struct Trainer::Impl {
         p.mutable_grad() = g.clone();
       off += p.numel();
     }
+  }
+  void StartReduce(const std::vector<torch::Tensor>& params, torch::Tensor* bucket) {
+    if (!comm) return;
+    torch::NoGradGuard guard;
+    *bucket = FlattenGrads(params);
+    comm->StartAllReduceSum(bucket->data_ptr<float>(), bucket->numel());
+  }
+  void FinishReduce(const std::vector<torch::Tensor>& ac_params,
+                    const std::vector<torch::Tensor>& disc_params) {
+    if (!comm) return;
+    torch::NoGradGuard guard;
+    comm->WaitAll();
+    ScatterGrads(ac_params, ac_grads);
+    if (!disc_params.empty()) ScatterGrads(disc_params, disc_grads);
   }
 
   // Mean and unbiased standard deviation of a tensor over all ranks.
@@ -496,6 +511,8 @@ IterationStats Trainer::RunIteration() {
   double a_loss = 0, c_loss = 0, b_loss = 0, d_loss = 0, gp = 0, acc_d = 0, acc_a = 0, clipf = 0;
   int64_t steps = 0, disc_samples = 0;
   const auto params = m.AllParameters();
+  const auto ac_params = m.ac->parameters();
+  const auto disc_params = m.use_amp ? m.disc->parameters() : std::vector<torch::Tensor>{};
   for (int epoch = 0; epoch < ppo.mini_epochs; ++epoch) {
     const auto perm = Permutation(m.rng, total);
     for (int64_t k = 0; k < n_mb; ++k) {
@@ -522,6 +539,7 @@ IterationStats Trainer::RunIteration() {
         b_loss += bounds.item<double>() * share;
         clipf += ClipFraction(logp.detach(), old_logp, ppo.clip) * share;
       }
+      m.StartReduce(ac_params, &m.ac_grads);
       ppo_s += Since(t_phase);
       if (m.use_amp) {
         t_phase = Clock::now();
@@ -564,7 +582,8 @@ IterationStats Trainer::RunIteration() {
         disc_s += Since(t_phase);
       }
       t_phase = Clock::now();
-      m.ReduceGradients(params);
+      if (m.use_amp) m.StartReduce(disc_params, &m.disc_grads);
+      m.FinishReduce(ac_params, disc_params);
       if (ppo.grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, ppo.grad_norm);
       m.optim->step();
       ppo_s += Since(t_phase);

@@ -41,6 +41,7 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& options);
 struct RankBenchOptions {
   TrainBenchOptions train;          ///< Each process's run (one thread per process).
   int ranks = 2;                    ///< Processes of the data-parallel run.
+  int repeats = 2;                  ///< Rounds of the three runs (means are reported).
   std::vector<std::string> worker;  ///< argv that runs one worker; "--worker-out FILE" is added.
   std::vector<int> project = {8, 32, 64};  ///< Core counts of the projection table.
 };

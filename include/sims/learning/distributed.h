@@ -45,6 +45,11 @@ class Communicator {
   virtual void AllReduceSum(float* data, int64_t n) = 0;
   /// In-place element-wise sum over all ranks (statistics in double precision).
   virtual void AllReduceSum(double* data, int64_t n) = 0;
+  /// Starts an in-place sum all-reduce and returns at once, so computation can overlap it;
+  /// `data` must stay valid and untouched until WaitAll().
+  virtual void StartAllReduceSum(float* data, int64_t n) = 0;
+  /// Waits for every all-reduce StartAllReduceSum() began.
+  virtual void WaitAll() = 0;
   /// Copies `root`'s buffer to every rank.
   virtual void Broadcast(float* data, int64_t n, int root) = 0;
   /// Copies `root`'s buffer to every rank.
@@ -57,6 +62,8 @@ class Communicator {
   virtual int64_t reduce_calls() const = 0;
   /// Largest single all-reduce so far, in bytes (the flattened gradients in training).
   virtual int64_t max_reduce_bytes() const = 0;
+  /// Wall time spent inside collectives so far: transfer plus waiting for slower ranks.
+  virtual double collective_seconds() const = 0;
 };
 
 /// Joins the process group of `config` (rank 0 hosts the store); throws sims::Error naming
