@@ -50,10 +50,10 @@ int main(int argc, char** argv) {
                 << s.script.keyframes.size() << " keyframes (from "
                 << s.provenance["sources"].dump() << ")\n";
     }
+    for (const std::string& d : result.dropped) std::cout << "  dropped: " << d << "\n";
     std::cout << "wrote " << paths.size() << " of " << options.count << " scripts to " << out
               << " (" << result.attempts << " attempts, " << result.dropped.size() << " dropped)\n";
     if (static_cast<int>(paths.size()) < options.count) {
-      for (const std::string& d : result.dropped) std::cerr << "  dropped: " << d << "\n";
       std::cerr << "imitate_scripts: only " << paths.size() << " distinct valid scripts after "
                 << result.attempts << " attempts (raise --max-attempts or add scripts)\n";
       return 3;

@@ -74,7 +74,7 @@ std::vector<VideoFrame> SampleVideoFrames(const std::filesystem::path& video,
   const std::string scale = "scale=" + std::to_string(options.width) + ":-2";
   const std::string quality = std::to_string(options.jpeg_quality);
   auto name = [&](int i) {
-    char buf[16];
+    char buf[32];
     std::snprintf(buf, sizeof(buf), "%03d.jpg", i);
     return out_dir / buf;
   };

@@ -113,6 +113,11 @@ std::optional<ShortScript> Recombine(const std::vector<const ShortScript*>& pool
     std::vector<Keyframe> kfs;
     for (const Unit& u : chosen)
       for (Keyframe k : u.keyframes) {
+        // A unit's walk to the object the character already stands at (after a reach) would
+        // be a walk on the spot.
+        if (k.skill == Skill::kWalk && !kfs.empty() && kfs.back().skill == Skill::kReach &&
+            kfs.back().furniture == k.furniture && kfs.back().instance == k.instance)
+          continue;
         k.inserted = false;
         kfs.push_back(k);
       }
@@ -247,19 +252,16 @@ ImitationResult ImitateScripts(const ScriptDatabase& db, const ImitationOptions&
     for (Keyframe& k : script.keyframes) k.script_id = script.id;
     ImitatedScript out;
     out.script = std::move(script);
-    out.provenance = {{"method", online ? "llm" : "template"},
-                      {"seed", options.seed},
-                      {"attempt", attempt},
-                      {"emotion", emotion},
-                      {"sources", sources},
-                      {"notes", notes}};
+    out.provenance = {
+        {"method", online ? "llm" : "template"}, {"seed", options.seed}, {"attempt", attempt},
+        {"requested_emotion", emotion},          {"sources", sources},   {"notes", notes}};
     if (online) {
       out.provenance["model"] = options.model;
       out.provenance["endpoint"] = options.endpoint;
     }
     result.scripts.push_back(std::move(out));
   }
-  for (const std::string& d : result.dropped) spdlog::info("imitate_scripts: dropped {}", d);
+  for (const std::string& d : result.dropped) spdlog::debug("imitate_scripts: dropped {}", d);
   return result;
 }
 

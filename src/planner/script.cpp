@@ -345,7 +345,11 @@ json KeyframesToJson(const std::vector<Keyframe>& keyframes) {
   for (const Keyframe& k : keyframes) {
     json kj;
     kj["skill"] = SkillName(k.skill);
-    std::vector<std::string> tags = k.tags;
+    // The style is written on its own; repeating it (or a tag twice) among the mood words would
+    // make every load/save round trip grow the list.
+    std::vector<std::string> tags;
+    for (const std::string& t : k.tags)
+      if (t != k.style && std::find(tags.begin(), tags.end(), t) == tags.end()) tags.push_back(t);
     if (tags.empty()) tags.push_back(k.emotion);
     kj["emotion/style"] = Join(tags, ", ");
     kj["style"] = k.style;

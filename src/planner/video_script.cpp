@@ -70,7 +70,7 @@ std::string ReadBinary(const std::filesystem::path& p) {
 }
 
 std::string FrameName(std::size_t i) {
-  char buf[16];
+  char buf[32];
   std::snprintf(buf, sizeof(buf), "%03zu.jpg", i);
   return buf;
 }
@@ -167,7 +167,7 @@ VideoScriptResult ExtractVideoScript(const std::vector<ScriptFrame>& frames,
                                &r.notes, vocab);
   r.script.id = out.stem().string();
   for (Keyframe& k : r.script.keyframes) k.script_id = r.script.id;
-  for (const std::string& n : r.notes) spdlog::info("{}: {}", out.string(), n);
+  for (const std::string& n : r.notes) spdlog::debug("{}: {}", out.string(), n);
   r.frames_dir = KeepFrames(frames, out);
   WriteShortScript(out, r.script, Provenance(frames, options, out, r.notes));
   r.script_path = out;

@@ -151,7 +151,7 @@ TEST(ImitationTest, FakeEndpointAnswersAreValidatedAndDuplicatesDropped) {
   nlohmann::json body = nlohmann::json::parse(reqs[0].substr(reqs[0].find("\r\n\r\n") + 4));
   EXPECT_EQ(body["model"], "fake-llm");
   std::string user = body["messages"][1]["content"];
-  std::string emotion = r.scripts[0].provenance["emotion"];
+  std::string emotion = r.scripts[0].provenance["requested_emotion"];
   EXPECT_THAT(user, HasSubstr("Emotion: " + emotion));
   for (const auto& id : r.scripts[0].provenance["sources"])
     EXPECT_THAT(user, HasSubstr(Db().Find(id.get<std::string>())->summary));
