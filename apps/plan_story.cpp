@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   app.add_option("--layouts", r.layouts, "layout database from index_layouts (default: built-in)");
   app.add_option("--scene", r.scene, "bind to this scene (built-in name or file) instead");
   app.add_option("--config", r.config, "planner config (default configs/planner/planner.json)");
+  app.add_option("--db", r.extra_scripts,
+                 "extra short scripts appended to the built-in database: a folder of *.json "
+                 "(extract_script / imitate_scripts output) or one script file; repeatable");
   app.add_option("--llm-endpoint", r.llm_endpoint, "OpenAI-compatible http:// base URL");
   app.add_option("--llm-model", r.llm_model, "model name");
   app.add_option("--llm-key", r.llm_key, "API key (default $SIMS_LLM_API_KEY / $OPENAI_API_KEY)");

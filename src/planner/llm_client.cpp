@@ -291,23 +291,35 @@ HttpResponse HttpPost(const std::string& url,
   }
 }
 
-std::string ChatCompletion(const LlmConfig& config, const std::vector<ChatMessage>& messages,
-                           uint64_t seed) {
-  std::string endpoint = config.ResolvedEndpoint();
-  if (endpoint.empty()) throw LlmError(LlmError::Kind::kConfig, "no LLM endpoint configured");
+nlohmann::json ChatRequestJson(const LlmConfig& config, const std::vector<ChatMessage>& messages,
+                               uint64_t seed) {
   nlohmann::json req;
-  req["model"] = config.ResolvedModel();
+  req["model"] = config.model;
   req["temperature"] = config.temperature;
   req["max_tokens"] = config.max_tokens;
   req["seed"] = seed;
   if (config.json_mode) req["response_format"] = {{"type", "json_object"}};
   req["messages"] = nlohmann::json::array();
-  for (const ChatMessage& m : messages)
-    req["messages"].push_back({{"role", m.role}, {"content", m.content}});
+  for (const ChatMessage& m : messages) {
+    if (m.image_urls.empty()) {
+      req["messages"].push_back({{"role", m.role}, {"content", m.content}});
+      continue;
+    }
+    nlohmann::json parts = nlohmann::json::array();
+    parts.push_back({{"type", "text"}, {"text", m.content}});
+    for (const std::string& url : m.image_urls)
+      parts.push_back({{"type", "image_url"}, {"image_url", {{"url", url}}}});
+    req["messages"].push_back({{"role", m.role}, {"content", parts}});
+  }
+  return req;
+}
+
+std::string PostChatRequest(const std::string& endpoint, const std::string& api_key,
+                            const nlohmann::json& request, double timeout_s) {
+  if (endpoint.empty()) throw LlmError(LlmError::Kind::kConfig, "no LLM endpoint configured");
   std::vector<std::pair<std::string, std::string>> headers;
-  std::string key = config.ResolvedApiKey();
-  if (!key.empty()) headers.emplace_back("Authorization", "Bearer " + key);
-  HttpResponse r = HttpPost(ChatCompletionsUrl(endpoint), headers, req.dump(), config.timeout_s);
+  if (!api_key.empty()) headers.emplace_back("Authorization", "Bearer " + api_key);
+  HttpResponse r = HttpPost(ChatCompletionsUrl(endpoint), headers, request.dump(), timeout_s);
   if (r.status != 200)
     throw LlmError(LlmError::Kind::kHttp, "LLM endpoint answered HTTP " + std::to_string(r.status) +
                                               ": " + r.body.substr(0, 200));
@@ -328,6 +340,16 @@ std::string ChatCompletion(const LlmConfig& config, const std::vector<ChatMessag
     throw LlmError(LlmError::Kind::kProtocol,
                    "LLM reply lacks choices[0].message.content: " + r.body.substr(0, 200));
   return content->get<std::string>();
+}
+
+std::string ChatCompletion(const LlmConfig& config, const std::vector<ChatMessage>& messages,
+                           uint64_t seed) {
+  std::string endpoint = config.ResolvedEndpoint();
+  if (endpoint.empty()) throw LlmError(LlmError::Kind::kConfig, "no LLM endpoint configured");
+  LlmConfig resolved = config;
+  resolved.model = config.ResolvedModel();
+  return PostChatRequest(endpoint, config.ResolvedApiKey(),
+                         ChatRequestJson(resolved, messages, seed), config.timeout_s);
 }
 
 std::string StripToJson(const std::string& reply) {

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "sims/core/paths.h"
+#include "sims/planner/prompt.h"
 #include "sims/planner/text.h"
 
 namespace sims::planner {
@@ -21,7 +22,10 @@ StoryPlanner::StoryPlanner(PlannerConfig config, TextEmbedder embedder)
   ValidateConfig(config_, "planner config");
   vocab_ = std::make_unique<Vocabulary>(Vocabulary::Load(config_.vocabulary));
   lexicon_ = std::make_unique<EmotionLexicon>(EmotionLexicon::Load(config_.emotion_lexicon));
-  db_ = std::make_unique<ScriptDatabase>(ScriptDatabase::Load(config_.scripts_dir, *vocab_));
+  std::vector<std::filesystem::path> extras(config_.extra_scripts.begin(),
+                                            config_.extra_scripts.end());
+  db_ = std::make_unique<ScriptDatabase>(
+      ScriptDatabase::LoadWithExtras(config_.scripts_dir, extras, *vocab_));
   embedded_ = std::make_unique<ThemePlanner>(*db_, *vocab_, *lexicon_, config_.retrieval,
                                              config_.difficulty, std::move(embedder));
 }
@@ -56,37 +60,8 @@ ScriptResult StoryPlanner::ScriptForTheme(const std::string& theme, Difficulty d
   }
 }
 
-namespace {
-
-std::string ReadText(const std::string& file) {
-  std::filesystem::path p = file;
-  if (p.is_relative()) p = ConfigPath(file);
-  std::ifstream in(p, std::ios::binary);
-  if (!in) ThrowInputError(p.string(), "", "a readable prompt template", "no such file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void ReplaceAll(std::string* s, const std::string& key, const std::string& value) {
-  for (std::size_t pos = 0; (pos = s->find(key, pos)) != std::string::npos; pos += value.size())
-    s->replace(pos, key.size(), value);
-}
-
-}  // namespace
-
 std::pair<std::string, std::string> StoryPlanner::LlmPrompts(const std::string& theme,
                                                              Difficulty difficulty) const {
-  const Vocabulary& v = *vocab_;
-  std::vector<std::string> skills, styles;
-  for (const SkillSpec& s : v.skills) {
-    skills.push_back(s.name + (s.aliases.empty() ? "" : " (also " + s.aliases.front() + ")"));
-    std::vector<std::string> texts;
-    for (const StyleAxis& axis : s.axes)
-      for (const StyleValue& val : axis.values)
-        texts.push_back(val.text.empty() ? val.id : val.text);
-    styles.push_back("- " + s.name + ": " + Join(texts, "; "));
-  }
   std::array<int, 2> range = config_.difficulty.Range(difficulty);
   std::string candidates;
   for (int idx : embedded_->Candidates(theme, config_.llm.candidates)) {
@@ -98,20 +73,14 @@ std::pair<std::string, std::string> StoryPlanner::LlmPrompts(const std::string& 
     line["keyframes"] = kfs;
     candidates += line.dump() + "\n";
   }
-  auto fill = [&](std::string t) {
-    ReplaceAll(&t, "{{theme}}", theme);
-    ReplaceAll(&t, "{{difficulty}}", DifficultyName(difficulty));
-    ReplaceAll(&t, "{{min_interactions}}", std::to_string(range[0]));
-    ReplaceAll(&t, "{{max_interactions}}", std::to_string(range[1]));
-    ReplaceAll(&t, "{{skills}}", Join(skills, ", "));
-    ReplaceAll(&t, "{{furniture}}", v.FurnitureList());
-    ReplaceAll(&t, "{{emotions}}", v.EmotionList());
-    ReplaceAll(&t, "{{rooms}}", v.RoomTypeList());
-    ReplaceAll(&t, "{{styles}}", Join(styles, "\n"));
-    ReplaceAll(&t, "{{candidates}}", candidates);
-    return t;
-  };
-  return {fill(ReadText(config_.llm.system_prompt)), fill(ReadText(config_.llm.user_prompt))};
+  std::map<std::string, std::string> values = VocabularyPromptValues(*vocab_);
+  values["theme"] = theme;
+  values["difficulty"] = DifficultyName(difficulty);
+  values["min_interactions"] = std::to_string(range[0]);
+  values["max_interactions"] = std::to_string(range[1]);
+  values["candidates"] = candidates;
+  return {FillPrompt(ReadPromptTemplate(config_.llm.system_prompt), values),
+          FillPrompt(ReadPromptTemplate(config_.llm.user_prompt), values)};
 }
 
 LongScript StoryPlanner::ParseLlmReply(const std::string& content, Difficulty difficulty) const {
@@ -186,7 +155,8 @@ LongScript StoryPlanner::ParseLlmReply(const std::string& content, Difficulty di
 ScriptResult StoryPlanner::LlmScript(const std::string& theme, Difficulty difficulty,
                                      uint64_t seed) const {
   auto [system, user] = LlmPrompts(theme, difficulty);
-  std::string content = ChatCompletion(config_.llm, {{"system", system}, {"user", user}}, seed);
+  std::string content =
+      ChatCompletion(config_.llm, {{"system", system, {}}, {"user", user, {}}}, seed);
   ScriptResult r;
   r.script = ParseLlmReply(content, difficulty);
   r.script.theme = theme;
@@ -293,6 +263,8 @@ Plan PlanStory(const PlanRequest& req, TextEmbedder embedder) {
   if (!req.llm_model.empty()) config.llm.model = req.llm_model;
   if (!req.llm_key.empty()) config.llm.api_key = req.llm_key;
   if (req.llm_timeout_s > 0) config.llm.timeout_s = req.llm_timeout_s;
+  config.extra_scripts.insert(config.extra_scripts.end(), req.extra_scripts.begin(),
+                              req.extra_scripts.end());
   StoryPlanner planner(config, std::move(embedder));
   ScriptResult script =
       req.script.empty()

@@ -261,9 +261,11 @@ ShortScript ParseShortScript(const json& j, const std::string& source, GrammarMo
                              const Vocabulary& vocab) {
   if (!j.is_object())
     ThrowInputError(source, "", "a JSON object {summary, emotion, scene, keyframes}", Abbrev(j));
-  static const std::set<std::string> kKnown = {"id",    "summary",    "emotion",    "emotions",
-                                               "scene", "room",       "scene_type", "keyframes",
-                                               "title", "description"};
+  // "provenance" (where a script came from: video frames, imitated sources) is kept for people
+  // and ignored by the planner.
+  static const std::set<std::string> kKnown = {"id",    "summary",     "emotion",    "emotions",
+                                               "scene", "room",        "scene_type", "keyframes",
+                                               "title", "description", "provenance"};
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!kKnown.count(it.key()))
       spdlog::warn("{}: field '{}' is not part of the short-script format; ignored", source,
@@ -343,7 +345,11 @@ json KeyframesToJson(const std::vector<Keyframe>& keyframes) {
   for (const Keyframe& k : keyframes) {
     json kj;
     kj["skill"] = SkillName(k.skill);
-    std::vector<std::string> tags = k.tags;
+    // The style is written on its own; repeating it (or a tag twice) among the mood words would
+    // make every load/save round trip grow the list.
+    std::vector<std::string> tags;
+    for (const std::string& t : k.tags)
+      if (t != k.style && std::find(tags.begin(), tags.end(), t) == tags.end()) tags.push_back(t);
     if (tags.empty()) tags.push_back(k.emotion);
     kj["emotion/style"] = Join(tags, ", ");
     kj["style"] = k.style;
@@ -564,14 +570,37 @@ std::vector<Keyframe> InsertTransitions(const std::vector<Keyframe>& keyframes,
 
 ScriptDatabase::ScriptDatabase(std::vector<ShortScript> scripts) : scripts_(std::move(scripts)) {}
 
-ScriptDatabase ScriptDatabase::Load(const std::filesystem::path& dir_in, const Vocabulary& vocab) {
+ScriptDatabase ScriptDatabase::Load(const std::filesystem::path& dir, const Vocabulary& vocab) {
+  return LoadWithExtras(dir, {}, vocab);
+}
+
+ScriptDatabase ScriptDatabase::LoadWithExtras(const std::filesystem::path& dir_in,
+                                              const std::vector<std::filesystem::path>& extras,
+                                              const Vocabulary& vocab) {
   std::filesystem::path dir = dir_in.empty() ? AssetPath("scripts") : dir_in;
   if (!std::filesystem::is_directory(dir))
     ThrowInputError(dir.string(), "", "a folder of short-script JSON files", "no such folder");
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
-    if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  auto json_files = [](const std::filesystem::path& root) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(root))
+      if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    return files;
+  };
+  std::vector<std::filesystem::path> files = json_files(dir);
+  for (const auto& extra : extras) {
+    if (std::filesystem::is_directory(extra)) {
+      std::vector<std::filesystem::path> more = json_files(extra);
+      if (more.empty())
+        ThrowInputError(extra.string(), "", "a folder holding *.json short scripts", "none");
+      files.insert(files.end(), more.begin(), more.end());
+    } else if (std::filesystem::is_regular_file(extra)) {
+      files.push_back(extra);
+    } else {
+      ThrowInputError(extra.string(), "", "a short-script file or a folder of them",
+                      "no such file or folder");
+    }
+  }
   std::vector<ShortScript> scripts;
   std::map<std::string, std::string> ids;
   for (const auto& f : files) {

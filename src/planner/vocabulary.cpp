@@ -342,4 +342,102 @@ std::string Vocabulary::Closest(const std::string& word, const std::vector<std::
   return best;
 }
 
+namespace {
+
+// English plural → singular for one word (chairs, benches, shelves, libraries).
+std::string Singular(const std::string& w) {
+  auto ends = [&](const std::string& suf) {
+    return w.size() > suf.size() + 1 && w.compare(w.size() - suf.size(), suf.size(), suf) == 0;
+  };
+  if (ends("ies")) return w.substr(0, w.size() - 3) + "y";
+  if (ends("ves")) return w.substr(0, w.size() - 3) + "f";
+  if (ends("ches") || ends("shes") || ends("xes") || ends("sses")) return w.substr(0, w.size() - 2);
+  if (ends("s") && !ends("ss")) return w.substr(0, w.size() - 1);
+  return w;
+}
+
+// Past and other forms the light stemmer and the aliases do not cover.
+const std::map<std::string, std::string>& IrregularVerbs() {
+  static const std::map<std::string, std::string> kForms = {
+      {"sat", "sit"},     {"laid", "lie"},    {"lain", "lie"},     {"lying", "lie"},
+      {"stood", "stand"}, {"rose", "rise"},   {"risen", "rise"},   {"got", "get"},
+      {"went", "go"},     {"ran", "run"},     {"took", "take"},    {"running", "run"},
+      {"getting", "get"}, {"sitting", "sit"}, {"walking", "walk"}, {"touched", "touch"}};
+  return kForms;
+}
+
+}  // namespace
+
+std::optional<TermMatch> Vocabulary::Nearest(const std::string& text,
+                                             const std::map<std::string, std::string>& index) {
+  auto find = [&](const std::string& s) -> const std::string* {
+    auto it = index.find(Squash(s));
+    return it == index.end() ? nullptr : &it->second;
+  };
+  if (const std::string* c = find(text)) return TermMatch{*c, "known"};
+  std::vector<std::string> words = Words(text);
+  if (words.empty()) return std::nullopt;
+  std::vector<std::string> singular, base;
+  for (const std::string& w : words) {
+    singular.push_back(Singular(w));
+    auto irr = IrregularVerbs().find(w);
+    base.push_back(irr != IrregularVerbs().end() ? irr->second : Stem(w));
+  }
+  auto joined = [](const std::vector<std::string>& v, std::size_t from, std::size_t n) {
+    std::string s;
+    for (std::size_t i = from; i < from + n; ++i) s += (s.empty() ? "" : " ") + v[i];
+    return s;
+  };
+  // Longest sub-phrase first; among equally long ones the rightmost, because English puts the
+  // head noun last ("dining room chair" is a chair, not a room).
+  for (std::size_t n = words.size(); n >= 1; --n) {
+    for (std::size_t from = words.size() - n + 1; from-- > 0;) {
+      for (const auto* forms : {&words, &singular, &base}) {
+        std::string phrase = joined(*forms, from, n);
+        if (const std::string* c = find(phrase)) {
+          std::string how = n == words.size() ? (forms == &words ? "known" : "base form")
+                                              : "part '" + joined(words, from, n) + "'";
+          return TermMatch{*c, how};
+        }
+      }
+    }
+  }
+  // Spelling: the whole text, then each word (rightmost first). Stricter than Closest's
+  // suggestion threshold, because a mapping is applied silently: one edit per four letters
+  // ("armchiar" → armchair, but not "fly" → lay).
+  std::vector<std::string> names;
+  for (const auto& [key, canonical] : index) names.push_back(key);
+  auto spelling = [&](const std::string& word) -> std::optional<TermMatch> {
+    std::string closest = Closest(word, names);
+    if (closest.empty()) return std::nullopt;
+    std::string w = Squash(word);
+    if (EditDistance(w, closest) > std::max<std::size_t>(1, w.size() / 4)) return std::nullopt;
+    return TermMatch{index.at(closest), "spelling '" + closest + "'"};
+  };
+  if (auto m = spelling(text)) return m;
+  for (std::size_t i = words.size(); i-- > 0;) {
+    if (words[i].size() < 4 || IsStopWord(words[i])) continue;
+    if (auto m = spelling(words[i])) return m;
+  }
+  return std::nullopt;
+}
+
+std::optional<TermMatch> Vocabulary::NearestFurniture(const std::string& text) const {
+  return Nearest(text, furniture_index_);
+}
+
+std::optional<TermMatch> Vocabulary::NearestSkill(const std::string& text) const {
+  std::map<std::string, std::string> names;
+  for (const auto& [key, skill] : skill_index_) names[key] = SkillName(skill);
+  return Nearest(text, names);
+}
+
+std::optional<TermMatch> Vocabulary::NearestEmotion(const std::string& text) const {
+  return Nearest(text, emotion_index_);
+}
+
+std::optional<TermMatch> Vocabulary::NearestRoomType(const std::string& text) const {
+  return Nearest(text, room_index_);
+}
+
 }  // namespace sims::planner

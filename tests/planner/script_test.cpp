@@ -83,6 +83,10 @@ TEST(ScriptTest, RoundTripsThroughCanonicalJson) {
     EXPECT_EQ(a.keyframes[i].emotion, b.keyframes[i].emotion);
   }
   EXPECT_EQ(b.id, "bedroom_sad_2");
+  // Saving again gives the same text: the style is not repeated among the mood words.
+  EXPECT_EQ(ShortScriptToJson(b).dump(), ShortScriptToJson(a).dump());
+  ShortScript c = ParseShortScript(ShortScriptToJson(b), "roundtrip", GrammarMode::kStrict);
+  EXPECT_EQ(ShortScriptToJson(c).dump(), ShortScriptToJson(a).dump());
 }
 
 TEST(ScriptTest, SingleQuotesAreRejectedWithAFix) {

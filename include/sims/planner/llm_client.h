@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "sims/core/config.h"
 #include "sims/core/error.h"
 
@@ -94,11 +96,25 @@ HttpResponse HttpPost(const std::string& url,
 
 /// One chat message.
 struct ChatMessage {
-  std::string role;     ///< system, user or assistant.
-  std::string content;  ///< Text.
+  std::string role;                     ///< system, user or assistant.
+  std::string content;                  ///< Text.
+  std::vector<std::string> image_urls;  ///< Images (data: or http URLs) after the text, if any.
 };
 
-/// Sends a chat-completions request and returns choices[0].message.content.
+/// The chat-completions request body. Uses `config` verbatim (no environment fallbacks), so
+/// callers that must not read the environment resolve endpoint, model and key themselves.
+/// Messages with images become OpenAI content-part arrays ({"type": "text"} then
+/// {"type": "image_url", "image_url": {"url": ...}}).
+nlohmann::json ChatRequestJson(const LlmConfig& config, const std::vector<ChatMessage>& messages,
+                               uint64_t seed);
+
+/// POSTs a request body to `endpoint`'s chat-completions URL (Bearer `api_key` unless empty)
+/// and returns choices[0].message.content; every failure is an LlmError.
+std::string PostChatRequest(const std::string& endpoint, const std::string& api_key,
+                            const nlohmann::json& request, double timeout_s);
+
+/// Sends a chat-completions request (after the environment fallbacks of LlmConfig) and returns
+/// choices[0].message.content.
 std::string ChatCompletion(const LlmConfig& config, const std::vector<ChatMessage>& messages,
                            uint64_t seed);
 

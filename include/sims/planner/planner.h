@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "sims/core/config.h"
 #include "sims/planner/composer.h"
@@ -21,7 +22,8 @@ namespace sims::planner {
 
 /// All planner settings (configs/planner/planner.json).
 struct PlannerConfig {
-  std::string scripts_dir;      ///< Short-script database ("" = assets/scripts).
+  std::string scripts_dir;                 ///< Short-script database ("" = assets/scripts).
+  std::vector<std::string> extra_scripts;  ///< Script files/folders appended to the database.
   std::string vocabulary;       ///< Vocabulary file ("" = configs/planner/vocabulary.json).
   std::string emotion_lexicon;  ///< Lexicon file ("" = configs/planner/emotion_lexicon.json).
   RetrievalConfig retrieval;    ///< Retrieval weights.
@@ -33,6 +35,7 @@ struct PlannerConfig {
   template <class A>
   void Serialize(A* a) {
     a->Visit(SIMS_NVP(scripts_dir));
+    a->Visit(SIMS_NVP(extra_scripts));
     a->Visit(SIMS_NVP(vocabulary));
     a->Visit(SIMS_NVP(emotion_lexicon));
     a->Visit(SIMS_NVP(retrieval));
@@ -111,17 +114,18 @@ LayoutDatabase BuiltinLayoutDatabase(const LayoutConfig& config = {});
 
 /// Everything apps/plan_story asks for.
 struct PlanRequest {
-  std::string theme;               ///< Theme (exclusive with script).
-  std::string script;              ///< Script file (exclusive with theme).
-  std::string difficulty = "mid";  ///< simple | mid | hard (themes only).
-  uint64_t seed = 0;               ///< Seed.
-  std::string layouts;             ///< Layout database file ("" = built-in layouts).
-  std::string scene;               ///< Bind to this scene instead of retrieving a layout.
-  std::string config;              ///< Planner config ("" = configs/planner/planner.json).
-  std::string llm_endpoint;        ///< Overrides the config's endpoint.
-  std::string llm_model;           ///< Overrides the config's model.
-  std::string llm_key;             ///< Overrides the config's key.
-  double llm_timeout_s = 0.0;      ///< Overrides the config's time-out when positive.
+  std::string theme;                       ///< Theme (exclusive with script).
+  std::string script;                      ///< Script file (exclusive with theme).
+  std::string difficulty = "mid";          ///< simple | mid | hard (themes only).
+  uint64_t seed = 0;                       ///< Seed.
+  std::string layouts;                     ///< Layout database file ("" = built-in layouts).
+  std::string scene;                       ///< Bind to this scene instead of retrieving a layout.
+  std::string config;                      ///< Planner config ("" = configs/planner/planner.json).
+  std::string llm_endpoint;                ///< Overrides the config's endpoint.
+  std::string llm_model;                   ///< Overrides the config's model.
+  std::string llm_key;                     ///< Overrides the config's key.
+  double llm_timeout_s = 0.0;              ///< Overrides the config's time-out when positive.
+  std::vector<std::string> extra_scripts;  ///< --db: appended to the config's extra_scripts.
 };
 
 /// Theme or script → plan, as plan_story does it; errors name the flag or file.

@@ -120,6 +120,13 @@ class ScriptDatabase {
   /// scripts must pass the strict grammar. Duplicate ids are an error.
   static ScriptDatabase Load(const std::filesystem::path& dir = {},
                              const Vocabulary& vocab = Vocabulary::Default());
+  /// Loads the database at `dir` ("" = assets/scripts) and appends `extras` in order: each a
+  /// folder of *.json short scripts (searched recursively, sorted) or one script file, e.g. the
+  /// output of extract_script or imitate_scripts. Every script must pass the strict grammar;
+  /// ids must be unique across all of them (errors name both files).
+  static ScriptDatabase LoadWithExtras(const std::filesystem::path& dir,
+                                       const std::vector<std::filesystem::path>& extras,
+                                       const Vocabulary& vocab = Vocabulary::Default());
   /// Builds a database from scripts already in memory (tests).
   explicit ScriptDatabase(std::vector<ShortScript> scripts = {});
 

@@ -125,6 +125,12 @@ struct StyleChoice {
   std::vector<bool> axis_from_caption;  ///< Per axis: the caption named the value.
 };
 
+/// How a name outside the vocabulary was matched to a known one.
+struct TermMatch {
+  std::string canonical;  ///< Canonical name (a furniture category, skill, emotion or room).
+  std::string how;        ///< "known", "singular", "part 'chair'", "spelling 'sofa'", ...
+};
+
 /// The whole vocabulary; load with Vocabulary::Load, then query.
 class Vocabulary {
  public:
@@ -194,11 +200,23 @@ class Vocabulary {
   std::string EmotionList() const;
   /// Comma-separated room types (for error messages).
   std::string RoomTypeList() const;
+  /// Nearest furniture category for free text a model wrote ("wooden rocking chairs" → chair,
+  /// "armchiar" → armchair): exact name or alias, singular form, the longest known part
+  /// (rightmost first, the English head noun), then spelling; nullopt when nothing is close.
+  std::optional<TermMatch> NearestFurniture(const std::string& text) const;
+  /// Nearest skill for a verb phrase ("sitting down" → sit, "walked over" → walk).
+  std::optional<TermMatch> NearestSkill(const std::string& text) const;
+  /// Nearest emotion for a phrase ("very sleepy" → tired).
+  std::optional<TermMatch> NearestEmotion(const std::string& text) const;
+  /// Nearest room type for a phrase ("a cozy bedroom" → bedroom).
+  std::optional<TermMatch> NearestRoomType(const std::string& text) const;
   /// The known name closest to `word` by edit distance among `names` ("" if none is close).
   static std::string Closest(const std::string& word, const std::vector<std::string>& names);
 
  private:
   void BuildIndex();
+  static std::optional<TermMatch> Nearest(const std::string& text,
+                                          const std::map<std::string, std::string>& index);
   std::map<std::string, Skill> skill_index_;
   std::map<std::string, std::string> furniture_index_, emotion_index_, room_index_;
 };
