@@ -8,15 +8,18 @@
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
 #include "sims/motion/synthetic.h"
+#include "sims/motion/synthetic_catalog.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "Generate the synthetic motion clips (walk, idle, sit, lie, reach, getup) + manifest"};
   sims::motion::SyntheticOptions options;
   std::string out = sims::DataPath("motions/synthetic").string();
+  std::string catalog = sims::motion::DefaultSyntheticCatalogPath().string();
   bool check = false;
   sims::AppFlags flags;
   app.add_option("--out", out, "output folder (clips + manifest.json)");
+  app.add_option("--catalog", catalog, "recipe catalogue (JSON)");
   app.add_option("--seed", options.seed, "random seed");
   app.add_option("--variants", options.variants, "random variants per recipe")
       ->check(CLI::Range(1, 20));
@@ -28,7 +31,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {
     const auto start = std::chrono::steady_clock::now();
-    const auto clips = sims::motion::GenerateSyntheticClips(options);
+    const auto clips =
+        sims::motion::GenerateSyntheticClips(sims::motion::LoadSyntheticCatalog(catalog), options);
     const auto manifest = sims::motion::WriteMotionDataset(
         clips, out,
         "SIMS synthetic clips (procedural, not motion capture), seed " +

@@ -1,12 +1,16 @@
-// The synthetic catalogue: which clips exist, their keyframes, captions and labels.
+// The synthetic catalogue: loading and checking its JSON, and turning its recipes into clips
+// with the shared key shapes (sit-down, lie-down, reach timing) and the named poses.
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <set>
 
 #include <spdlog/spdlog.h>
 #include "motion/synthetic_internal.h"
+#include "sims/motion/synthetic_catalog.h"
 
 #include "sims/core/error.h"
+#include "sims/core/paths.h"
 #include "sims/core/rng.h"
 #include "sims/motion/rotation.h"
 
@@ -57,248 +61,7 @@ MotionClip Reversed(const MotionClip& c, MotionMeta meta) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Walks.
-
-struct WalkRecipe {
-  std::string name, emotion, style;
-  std::vector<std::string> captions;
-  WalkSpec spec;
-};
-
-WalkStyle Style(const std::function<void(WalkStyle&)>& edit) {
-  WalkStyle s;
-  edit(s);
-  return s;
-}
-
-std::vector<WalkRecipe> WalkRecipes() {
-  std::vector<WalkRecipe> r;
-  auto straight = [](double v, double dur = 8.0) {
-    WalkSpec s;
-    s.duration = dur;
-    s.keys = {{0, v, 0}};
-    return s;
-  };
-  const std::pair<double, const char*> speeds[] = {
-      {0.6, "slow"}, {0.9, "moderate"}, {1.2, "normal"}, {1.5, "brisk"}};
-  for (auto [v, word] : speeds) {
-    r.push_back(
-        {std::string("walk_") + word,
-         "neutral",
-         "normal",
-         {std::string("a person walks forward at a ") + word + " pace",
-          "someone walks straight ahead", std::string("walking forward, ") + word + " speed",
-          "a person walks in a straight line"},
-         straight(v)});
-  }
-  for (const char* side : {"left", "right"}) {
-    const double sgn = std::string(side) == "left" ? 1 : -1;
-    for (auto [rate, word] : {std::pair<double, const char*>{0.35, "gently"}, {0.75, "sharply"}}) {
-      WalkSpec s;
-      s.duration = 8.0;
-      s.keys = {{0, 1.0, 0}, {1.0, 1.0, sgn * rate}, {7.0, 1.0, sgn * rate}, {8.0, 1.0, 0}};
-      r.push_back({std::string("walk_turn_") + side + "_" + word,
-                   "neutral",
-                   "turning",
-                   {std::string("a person walks while turning ") + side,
-                    std::string("someone walks in a curve to the ") + side,
-                    std::string("walking and ") + word + " turning " + side,
-                    std::string("a person follows a path that bends ") + side},
-                   s});
-    }
-  }
-  {
-    WalkSpec s;
-    s.duration = 8.0;
-    s.keys = {{0, 1.0, 0},       {1.0, 1.0, 0.55},  {3.5, 1.0, 0.55},
-              {4.5, 1.0, -0.55}, {7.0, 1.0, -0.55}, {8.0, 1.0, 0}};
-    r.push_back({"walk_s_curve",
-                 "neutral",
-                 "turning",
-                 {"a person walks along an s-shaped path", "someone walks weaving left then right",
-                  "walking in a winding line"},
-                 s});
-  }
-  for (auto [v, word] : {std::pair<double, const char*>{0.8, "slowly"}, {1.2, "steadily"}}) {
-    WalkSpec s;
-    s.duration = 7.0;
-    s.keys = {{0.0, 0, 0}, {0.8, 0, 0}, {2.0, v, 0}, {4.8, v, 0}, {6.0, 0, 0}, {7.0, 0, 0}};
-    r.push_back({std::string("walk_start_stop_") + (v < 1 ? "slow" : "normal"),
-                 "neutral",
-                 "start stop",
-                 {std::string("a person starts walking, walks ") + word + " a few meters and stops",
-                  "someone walks forward from standing and comes to a halt",
-                  "starting to walk, then stopping", "a person walks to a spot and stops there"},
-                 s});
-  }
-  for (const char* side : {"left", "right"}) {
-    const double sgn = std::string(side) == "left" ? 1 : -1;
-    for (int deg : {90, 180}) {
-      // Turn in place (smooth yaw-rate bump), then walk off and stop.
-      const double turn_time = deg == 90 ? 1.6 : 2.8;
-      const double peak =
-          Deg(deg) / (0.5 * turn_time + 0.5 * turn_time * 0.5);  // bump area ≈ 0.75·peak·T
-      WalkSpec s;
-      s.duration = 6.2 + turn_time;
-      s.keys = {{0.0, 0, 0},
-                {0.5, 0, 0},
-                {0.5 + 0.25 * turn_time, 0, sgn * peak},
-                {0.5 + 0.75 * turn_time, 0, sgn * peak},
-                {0.5 + turn_time, 0.2, 0},
-                {1.5 + turn_time, 1.1, 0},
-                {4.2 + turn_time, 1.1, 0},
-                {5.2 + turn_time, 0, 0}};
-      const std::string turn =
-          deg == 90 ? std::string("turns ") + side : std::string("turns around to the ") + side;
-      r.push_back({"walk_turn_in_place_" + std::string(side) + "_" + std::to_string(deg),
-                   "neutral",
-                   "turn in place",
-                   {"a person " + turn + " and walks away",
-                    "someone " + turn + " on the spot, then walks forward",
-                    "standing, " + std::string(deg == 90 ? "turning " : "turning around to the ") +
-                        side + " and walking off"},
-                   s});
-    }
-  }
-  // Styles.
-  r.push_back(
-      {"walk_sad_bowed_head",
-       "sad",
-       "slow with bowed head",
-       {"a sad person walks slowly with the head bowed", "walking slowly, head down, looking sad",
-        "someone shuffles forward sadly", "a person walks dejectedly with a drooping head"},
-       [&] {
-         WalkSpec s = straight(0.55);
-         s.style = Style([](WalkStyle& w) {
-           w.head_pitch_deg = 35, w.lean_deg = 10, w.arm_swing_deg = 8, w.lift = 0.04;
-           w.heel_strike_deg = 6, w.toe_off_deg = 18, w.cadence_scale = 0.85, w.sway = 0.015;
-           w.elbow_deg = 8, w.elbow_swing_deg = 4;
-         });
-         return s;
-       }()});
-  r.push_back({"walk_tired",
-               "tired",
-               "dragging feet",
-               {"a tired person drags their feet while walking", "walking slowly and wearily",
-                "someone walks exhausted, slumped forward", "a weary person trudges along"},
-               [&] {
-                 WalkSpec s = straight(0.6);
-                 s.style = Style([](WalkStyle& w) {
-                   w.head_pitch_deg = 15, w.lean_deg = 12, w.arm_swing_deg = 6, w.lift = 0.035;
-                   w.heel_strike_deg = 4, w.toe_off_deg = 15, w.cadence_scale = 0.85,
-                   w.crouch = 0.02;
-                   w.elbow_deg = 8, w.elbow_swing_deg = 3, w.sway = 0.025;
-                 });
-                 return s;
-               }()});
-  r.push_back(
-      {"walk_big_steps",
-       "neutral",
-       "big steps",
-       {"a person walks with big strides", "taking long steps while walking",
-        "someone strides forward with long steps", "walking with an exaggerated long stride"},
-       [&] {
-         WalkSpec s = straight(1.3);
-         s.style = Style([](WalkStyle& w) {
-           w.stride_scale = 1.3, w.arm_swing_deg = 30, w.lift = 0.09, w.heel_strike_deg = 20;
-         });
-         return s;
-       }()});
-  r.push_back({"walk_drunk",
-               "drunk",
-               "drunk sway",
-               {"a drunk person staggers forward", "someone sways from side to side while walking",
-                "walking unsteadily like a drunk", "a tipsy person stumbles along"},
-               [&] {
-                 WalkSpec s = straight(0.7);
-                 s.style = Style([](WalkStyle& w) {
-                   w.drunk = 1.0, w.step_width = 0.13, w.head_pitch_deg = 10, w.arm_abduct_deg = 14;
-                   w.cadence_scale = 0.9, w.lean_deg = 4, w.sway = 0.03;
-                 });
-                 s.seed = 11;
-                 return s;
-               }()});
-  r.push_back({"walk_hands_behind_back",
-               "relaxed",
-               "hands behind back",
-               {"a person strolls with the hands clasped behind the back",
-                "walking leisurely with hands behind the back",
-                "someone walks calmly, arms folded behind", "a relaxed stroll, hands behind"},
-               [&] {
-                 WalkSpec s = straight(0.8);
-                 s.style = Style([](WalkStyle& w) { w.hands_behind_back = true, w.lean_deg = 4; });
-                 return s;
-               }()});
-  r.push_back({"walk_tiptoe",
-               "stressed",
-               "tiptoe",
-               {"a person sneaks forward on tiptoe", "walking nervously on the toes",
-                "someone tiptoes quietly", "a person creeps along on the balls of the feet"},
-               [&] {
-                 WalkSpec s = straight(0.5);
-                 s.style = Style([](WalkStyle& w) {
-                   w.tiptoe = true, w.cadence_scale = 1.1, w.lift = 0.05, w.arm_abduct_deg = 14;
-                   w.elbow_deg = 45, w.crouch = 0.01, w.lean_deg = 8, w.arm_swing_deg = 10;
-                   w.sway = 0.015;
-                 });
-                 return s;
-               }()});
-  r.push_back({"walk_hurried",
-               "hurried",
-               "hurried fast walk",
-               {"a person walks hurriedly", "someone rushes forward quickly",
-                "walking fast in a hurry", "a person hurries along with quick steps"},
-               [&] {
-                 WalkSpec s = straight(1.7);
-                 s.style = Style([](WalkStyle& w) {
-                   w.cadence_scale = 1.08, w.lean_deg = 7, w.arm_swing_deg = 26, w.elbow_deg = 55;
-                   w.elbow_swing_deg = 15;
-                 });
-                 return s;
-               }()});
-  r.push_back({"walk_angry",
-               "angry",
-               "stomping",
-               {"an angry person stomps forward", "walking aggressively with heavy steps",
-                "someone marches angrily", "a furious person storms ahead"},
-               [&] {
-                 WalkSpec s = straight(1.4);
-                 s.style = Style([](WalkStyle& w) {
-                   w.lean_deg = 8, w.heel_strike_deg = 20, w.arm_swing_deg = 28, w.elbow_deg = 40;
-                   w.arm_abduct_deg = 12, w.head_pitch_deg = 5, w.lift = 0.09;
-                 });
-                 return s;
-               }()});
-  r.push_back({"walk_happy",
-               "happy",
-               "bouncy",
-               {"a happy person walks with a bounce in the step", "someone walks cheerfully",
-                "bouncing happily while walking", "a joyful person walks along"},
-               [&] {
-                 WalkSpec s = straight(1.25);
-                 s.style = Style([](WalkStyle& w) {
-                   w.bounce = 0.02, w.arm_swing_deg = 32, w.head_pitch_deg = -8, w.lift = 0.09;
-                   w.cadence_scale = 1.05, w.lean_deg = 0;
-                 });
-                 return s;
-               }()});
-  r.push_back({"walk_relaxed_stroll",
-               "relaxed",
-               "stroll",
-               {"a person strolls in a relaxed way", "someone ambles along leisurely",
-                "walking slowly and casually", "a calm, easy stroll"},
-               [&] {
-                 WalkSpec s = straight(0.85);
-                 s.keys = {{0, 0.85, 0}, {2, 0.85, 0.2}, {6, 0.85, 0.2}, {8, 0.85, 0}};
-                 s.style =
-                     Style([](WalkStyle& w) { w.arm_swing_deg = 16, w.cadence_scale = 0.95; });
-                 return s;
-               }()});
-  return r;
-}
-
-// ---------------------------------------------------------------------------------------
-// Idles, sits, lies, reaches, get-ups.
+// Key shapes shared by the recipes.
 
 BodyKey At(BodyKey k, double t, bool hold = false) {
   k.t = t;
@@ -502,390 +265,438 @@ std::vector<BodyKey> LieDownKeys(const FurnitureSpec& bed) {
   return keys;
 }
 
+// ---------------------------------------------------------------------------------------
+// Named poses: edits that depend on the body's own geometry (forward kinematics of the edited
+// key) or on the bed, which a list of numbers in the catalogue cannot express.
+
+using PoseFn = void (*)(BodyKey&, const FurnitureSpec&);
+
+const std::map<std::string, PoseFn>& NamedPoses() {
+  static const std::map<std::string, PoseFn> poses = {
+      {"hands_behind_back",
+       [](BodyKey& k, const FurnitureSpec&) {
+         std::array<Eigen::Vector3d, 2> targets, hints;
+         HandsBehindBackTargets(k.pelvis, YawPitchRoll(k.yaw, k.pitch, k.roll), &targets, &hints);
+         for (int arm = 0; arm < 2; ++arm) {
+           k.limbs[arm].weight = 1;
+           k.limbs[arm].target = targets[arm];
+           k.limbs[arm].hint = hints[arm];
+         }
+       }},
+      {"hands_mid_thigh",
+       [](BodyKey& k, const FurnitureSpec&) {
+         const SkeletonPose sp = PoseOf(k);
+         HandsTo(&k, OnThigh(sp, false, 0.5), OnThigh(sp, true, 0.5));
+       }},
+      {"legs_crossed",
+       [](BodyKey& k, const FurnitureSpec&) {
+         // Right knee over the left one, right foot hanging beside the left shin.
+         k.limbs[3].target.y() = 0.06;
+         const SkeletonPose sp = PoseOf(k);
+         LimbKey& r = k.limbs[2];
+         r.target = sp.pos[sim::kLeftShin] + Eigen::Vector3d(0.05, 0.13, -0.16);
+         r.yaw = Deg(20), r.pitch = Deg(25);
+         r.hint = Eigen::Vector3d(0.3, 0.4, 1);
+         // Hands rest on the crossed thigh.
+         const SkeletonPose crossed = PoseOf(k);
+         HandsTo(&k, OnThigh(crossed, false, 0.4) + Eigen::Vector3d(0, -0.03, 0),
+                 OnThigh(crossed, false, 0.85) + Eigen::Vector3d(0, 0.05, 0));
+       }},
+      {"hands_on_knees",
+       [](BodyKey& k, const FurnitureSpec&) {
+         const SkeletonPose sp = PoseOf(k);
+         HandsTo(&k, sp.pos[sim::kRightShin] + Eigen::Vector3d(0.02, 0, 0.09),
+                 sp.pos[sim::kLeftShin] + Eigen::Vector3d(0.02, 0, 0.09));
+       }},
+      {"on_side",
+       [](BodyKey& k, const FurnitureSpec& bed) {
+         k.yaw = 0, k.pitch = 0, k.roll = -Deg(80);
+         k.pelvis = Eigen::Vector3d(bed.front_x - 0.5, 0.0, bed.height + 0.12);
+         k.dofs = DofVector::Zero();
+         k.dofs[kRHipY] = k.dofs[kLHipY] = -Deg(50);
+         k.dofs[kRKnee] = k.dofs[kLKnee] = Deg(65);
+         k.dofs[kLShY] = -Deg(80), k.dofs[kLElbow] = -Deg(70);
+         k.dofs[kRShY] = -Deg(10), k.dofs[kRShX] = -Deg(5), k.dofs[kRElbow] = -Deg(30);
+         k.dofs[kAbdY] = Deg(10), k.dofs[kNeckY] = Deg(10);
+       }},
+      {"knees_up",
+       [](BodyKey& k, const FurnitureSpec& bed) {
+         const SkeletonPose sp = PoseOf(k);
+         for (int leg = 0; leg < 2; ++leg) {
+           const int thigh = leg == 0 ? sim::kRightThigh : sim::kLeftThigh;
+           LimbKey& l = k.limbs[2 + leg];
+           l.weight = 1;
+           l.target = sp.pos[thigh] + Eigen::Vector3d(0, -0.5, 0);
+           l.target.z() = bed.height + FootOf(Skel()).ankle_height;
+           l.yaw = -Deg(90), l.pitch = 0;
+           l.hint = Eigen::Vector3d(0, 0, 1);
+         }
+       }},
+  };
+  return poses;
+}
+
+std::string NamedPoseList() {
+  std::string s;
+  for (const auto& [name, fn] : NamedPoses()) s += (s.empty() ? "" : ", ") + name;
+  return s;
+}
+
+int DofIndex(const std::string& name) {
+  const auto& names = sim::DofNames();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (name == names[i]) return static_cast<int>(i);
+  return -1;
+}
+
+void RequireDofNames(const std::map<std::string, double>& dofs, const std::string& field) {
+  for (const auto& [name, deg] : dofs)
+    Require(DofIndex(name) >= 0, field + "." + name, "a joint name (abdomen_x ... left_ankle_z)");
+}
+
+void SetDofs(const std::map<std::string, double>& dofs_deg, double sign, BodyKey* k) {
+  for (const auto& [name, deg] : dofs_deg) k->dofs[DofIndex(name)] = sign * Deg(deg);
+}
+
+void RequireRange(const SyntheticRange& r, const std::string& field) {
+  Require(r[0] <= r[1], field, "[lo, hi] with lo <= hi");
+}
+
+// Applies a recipe's edits in a fixed order (the named pose last: it measures the edited key).
+void ApplyEdit(const PoseEdit& e, const FurnitureSpec& furniture, BodyKey* k) {
+  // Only non-zero offsets touch the pelvis so an absent offset leaves it bit-for-bit alone.
+  for (int i = 0; i < 3; ++i)
+    if (e.pelvis_offset[i] != 0) k->pelvis[i] += e.pelvis_offset[i];
+  if (e.pitch_deg) k->pitch = Deg(*e.pitch_deg);
+  SetDofs(e.dofs_deg, 1.0, k);
+  if (!e.pose.empty()) NamedPoses().at(e.pose)(*k, furniture);
+}
+
+IdleNoise NoiseOf(const SyntheticNoise& s) {
+  IdleNoise n;
+  n.breathing = s.breathing;
+  n.look = Deg(s.look_deg);
+  n.sway = s.sway;
+  n.fidget = Deg(s.fidget_deg);
+  return n;
+}
+
+MotionMeta Meta(const SyntheticLabels& l, const std::string& skill, int variant,
+                const std::vector<std::string>& default_furniture) {
+  return SyntheticMeta(l.name + Suffix(variant), skill, l.emotion, l.style, l.captions,
+                       l.furniture.empty() ? default_furniture : l.furniture);
+}
+
+// Speed/turn keys of a turn on the spot (smooth yaw-rate bump), then a walk off and a stop.
+WalkSpec TurnInPlaceSpec(const TurnInPlace& turn) {
+  const double sgn = turn.degrees > 0 ? 1 : -1;
+  const double turn_time = turn.turn_time;
+  // bump area ≈ 0.75·peak·T
+  const double peak = Deg(std::abs(turn.degrees)) / (0.5 * turn_time + 0.5 * turn_time * 0.5);
+  WalkSpec s;
+  s.duration = 6.2 + turn_time;
+  s.keys = {{0.0, 0, 0},
+            {0.5, 0, 0},
+            {0.5 + 0.25 * turn_time, 0, sgn * peak},
+            {0.5 + 0.75 * turn_time, 0, sgn * peak},
+            {0.5 + turn_time, 0.2, 0},
+            {1.5 + turn_time, 1.1, 0},
+            {4.2 + turn_time, 1.1, 0},
+            {5.2 + turn_time, 0, 0}};
+  return s;
+}
+
 }  // namespace
 
+void SyntheticLabels::ValidateLabels() const {
+  Require(!name.empty(), "name", "a clip name");
+  Require(!emotion.empty(), "emotion", "an emotion label");
+  Require(!captions.empty(), "captions", "at least one caption");
+  for (const auto& c : captions) Require(!c.empty(), "captions", "non-empty captions");
+}
+
+void TurnInPlace::Validate() const {
+  Require(degrees != 0 && std::abs(degrees) <= 360, "degrees", "a non-zero angle within ±360");
+  Require(turn_time > 0, "turn_time", "a positive time (s)");
+}
+
+void WalkRecipe::Validate() const {
+  ValidateLabels();
+  Require(duration > 0, "duration", "a positive duration (s)");
+  Require(turn_in_place || !keys.empty(), "keys", "at least one key (or turn_in_place)");
+  Require(!turn_in_place || keys.empty(), "keys", "no keys together with turn_in_place");
+  for (std::size_t i = 1; i < keys.size(); ++i)
+    Require(keys[i].t >= keys[i - 1].t, "keys[" + std::to_string(i) + "].t",
+            "times in increasing order");
+}
+
+void WalkSection::Validate() const {
+  RequireRange(speed_scale, "speed_scale");
+  RequireRange(turn_scale, "turn_scale");
+  RequireRange(drift, "drift");
+}
+
+void SyntheticNoise::Validate() const {
+  Require(breathing >= 0 && look_deg >= 0 && sway >= 0 && fidget_deg >= 0, "noise",
+          "non-negative amplitudes");
+}
+
+void PoseEdit::Validate() const {
+  RequireDofNames(dofs_deg, "dofs_deg");
+  Require(pose.empty() || NamedPoses().count(pose), "pose", "empty or one of " + NamedPoseList());
+}
+
+void IdleSection::Validate() const {
+  Require(duration > 0, "duration", "a positive duration (s)");
+  Require(foot_width > 0, "foot_width", "a positive width (m)");
+}
+
+void SitMotion::Validate() const {
+  ValidateLabels();
+  Require(sit_time > 0, "sit_time", "a positive time (s)");
+  Require(hold >= 0, "hold", "a non-negative time (s)");
+  Require(!furniture.empty(), "furniture", "at least one furniture label");
+}
+
+void SeatSpec::Validate() const {
+  Require(height > 0 && depth > 0 && width > 0, "height", "positive seat dimensions (m)");
+  RequireRange(height_jitter, "height_jitter");
+}
+
+void SitIdleSection::Validate() const {
+  Require(duration > 0, "duration", "a positive duration (s)");
+  Require(!furniture.empty(), "furniture", "at least one furniture label");
+}
+
+void BedSection::Validate() const {
+  Require(height > 0, "height", "a positive height (m)");
+  RequireRange(variant_height, "variant_height");
+  Require(lie_hold >= 0, "lie_hold", "a non-negative time (s)");
+}
+
+void LieIdleSection::Validate() const {
+  Require(duration > 0, "duration", "a positive duration (s)");
+}
+
+void ReachRecipe::Validate() const {
+  ValidateLabels();
+  Require(side == "right" || side == "left", "side", "\"right\" or \"left\"");
+  Require(!furniture.empty(), "furniture", "at least one furniture label");
+  RequireDofNames(dofs_deg, "dofs_deg");
+}
+
+void ReachSection::Validate() const {
+  Require(target_jitter >= 0, "target_jitter", "a non-negative distance (m)");
+  RequireDofNames(side_dofs_deg, "side_dofs_deg");
+}
+
+void SyntheticCatalog::Validate() const {
+  std::set<std::string> names;
+  auto unique = [&](const std::string& section, const std::string& name) {
+    Require(names.insert(name).second, section + ".name",
+            "clip names unique in the catalogue ('" + name + "' repeats)");
+  };
+  for (const auto& r : walk.recipes) unique("walk.recipes", r.name);
+  for (const auto& r : idle.recipes) unique("idle.recipes", r.name);
+  for (const auto& r : seats) unique("seats", r.sit.name), unique("seats", r.getup.name);
+  for (const auto& r : sit_idle.recipes) unique("sit_idle.recipes", r.name);
+  unique("bed.lie_down", bed.lie_down.name);
+  unique("bed.getup", bed.getup.name);
+  for (const auto& r : lie_idle.recipes) unique("lie_idle.recipes", r.name);
+  for (const auto& r : reach.recipes) unique("reach.recipes", r.name);
+}
+
+std::filesystem::path DefaultSyntheticCatalogPath() {
+  return ConfigPath("motion/synthetic_catalog.json");
+}
+
+SyntheticCatalog LoadSyntheticCatalog(const std::filesystem::path& path) {
+  return LoadConfig<SyntheticCatalog>(path);
+}
+
 std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options) {
+  return GenerateSyntheticClips(LoadSyntheticCatalog(DefaultSyntheticCatalogPath()), options);
+}
+
+std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
+                                               const SyntheticOptions& options) {
   ValidateConfig(options, "synthetic options");
+  ValidateConfig(catalog, "synthetic catalogue");
   const double fps = options.fps;
   auto wanted = [&](const std::string& skill) {
     return options.skills.empty() ||
            std::find(options.skills.begin(), options.skills.end(), skill) != options.skills.end();
   };
   std::vector<MotionClip> out;
+  // One stream for the whole catalogue: the order of the sections and draws below fixes
+  // every variant, so keep it when adding recipes (append them).
   Rng rng(options.seed);
   const double h_stand = Skel().standing_root_height();
+  const FurnitureSpec no_furniture;
 
   if (wanted("walk")) {
-    for (const WalkRecipe& r : WalkRecipes()) {
+    const WalkSection& sec = catalog.walk;
+    for (const WalkRecipe& r : sec.recipes) {
+      WalkSpec base;
+      if (r.turn_in_place) {
+        base = TurnInPlaceSpec(*r.turn_in_place);
+      } else {
+        base.duration = r.duration;
+        base.keys = r.keys;
+      }
+      base.style = r.gait;
+      base.seed = r.seed;
       for (int v = 0; v < options.variants; ++v) {
-        WalkSpec s = r.spec;
+        WalkSpec s = base;
         s.phase = rng.Uniform();
         s.seed = s.seed * 7919 + options.seed * 104729 + v;
         if (v > 0) {
-          const double speed = rng.Uniform(0.88, 1.12), turn = rng.Uniform(0.85, 1.15);
+          const double speed = rng.Uniform(sec.speed_scale[0], sec.speed_scale[1]);
+          const double turn = rng.Uniform(sec.turn_scale[0], sec.turn_scale[1]);
           for (WalkKey& k : s.keys) k.speed *= speed, k.yaw_rate *= turn;
           // Later variants drift gently so straight walks also cover slight curves.
-          if (r.style != "turning" && r.style != "turn in place" && r.style != "start stop") {
-            const double drift = rng.Uniform(-0.15, 0.15);
+          if (r.drift) {
+            const double drift = rng.Uniform(sec.drift[0], sec.drift[1]);
             for (WalkKey& k : s.keys) k.yaw_rate += drift;
           }
         }
-        out.push_back(GenerateWalk(
-            s, SyntheticMeta(r.name + Suffix(v), "walk", r.emotion, r.style, r.captions, {"floor"}),
-            fps));
+        out.push_back(GenerateWalk(s, Meta(r, "walk", v, sec.furniture), fps));
       }
     }
   }
 
   if (wanted("idle")) {
-    struct IdleRecipe {
-      std::string name, emotion, style;
-      std::vector<std::string> captions;
-      std::function<void(BodyKey&, IdleNoise&)> edit;
-    };
-    const std::vector<IdleRecipe> idles = {
-        {"idle_stand_neutral",
-         "neutral",
-         "looking around",
-         {"a person stands and looks around", "standing still, glancing around",
-          "someone waits in place", "a person stands idle"},
-         [](BodyKey&, IdleNoise& n) { n.look = Deg(25), n.sway = 0.015; }},
-        {"idle_stand_tired",
-         "tired",
-         "slouching",
-         {"a tired person stands slouched", "standing wearily with drooping shoulders",
-          "someone stands exhausted, head hanging"},
-         [](BodyKey& k, IdleNoise& n) {
-           k.dofs[kAbdY] = Deg(14), k.dofs[kNeckY] = Deg(20), k.pelvis.z() -= 0.01;
-           n.sway = 0.02, n.breathing = 2.0;
-         }},
-        {"idle_stand_relaxed",
-         "relaxed",
-         "hands behind back",
-         {"a person stands relaxed with hands behind the back",
-          "standing calmly, hands clasped behind",
-          "someone waits patiently, hands behind the back"},
-         [](BodyKey& k, IdleNoise& n) {
-           std::array<Eigen::Vector3d, 2> targets, hints;
-           HandsBehindBackTargets(k.pelvis, YawPitchRoll(k.yaw, k.pitch, k.roll), &targets, &hints);
-           for (int arm = 0; arm < 2; ++arm) {
-             k.limbs[arm].weight = 1;
-             k.limbs[arm].target = targets[arm];
-             k.limbs[arm].hint = hints[arm];
-           }
-           n.look = Deg(15), n.sway = 0.01;
-         }},
-        {"idle_stand_stressed",
-         "stressed",
-         "fidgeting",
-         {"a stressed person fidgets while standing", "standing nervously, shifting weight",
-          "someone waits anxiously, unable to keep still"},
-         [](BodyKey&, IdleNoise& n) { n.look = Deg(30), n.sway = 0.03, n.fidget = Deg(8); }},
-        {"idle_stand_sad",
-         "sad",
-         "head down",
-         {"a sad person stands with the head down", "standing still, looking down sadly",
-          "someone stands dejected, shoulders slumped"},
-         [](BodyKey& k, IdleNoise& n) {
-           k.dofs[kNeckY] = Deg(35), k.dofs[kAbdY] = Deg(8);
-           n.look = Deg(5), n.sway = 0.008;
-         }},
-    };
-    for (const IdleRecipe& r : idles) {
+    const IdleSection& sec = catalog.idle;
+    for (const IdleRecipe& r : sec.recipes) {
       for (int v = 0; v < options.variants; ++v) {
-        BodyKey k = StandingKey(0.0, 0.1 + 0.02 * v);
-        IdleNoise n;
-        r.edit(k, n);
+        BodyKey k = StandingKey(0.0, sec.foot_width + sec.foot_width_step * v);
+        ApplyEdit(r.key, no_furniture, &k);
+        IdleNoise n = NoiseOf(r.noise);
         n.seed = rng.NextU64();
-        std::vector<BodyKey> keys = {k, At(k, 6.0, true)};
-        out.push_back(Build(
-            keys, n,
-            SyntheticMeta(r.name + Suffix(v), "idle", r.emotion, r.style, r.captions, {"floor"}),
-            fps, {}));
+        std::vector<BodyKey> keys = {k, At(k, sec.duration, true)};
+        out.push_back(Build(keys, n, Meta(r, "idle", v, sec.furniture), fps, {}));
       }
     }
   }
 
   if (wanted("sit") || wanted("getup")) {
-    struct Seat {
-      std::string name, furniture;
-      double height;
-    };
-    const Seat seats[] = {
-        {"chair", "chair", 0.44}, {"sofa", "sofa", 0.40}, {"stool", "stool", 0.46}};
-    for (const Seat& seat_def : seats) {
+    for (const SeatRecipe& r : catalog.seats) {
       for (int v = 0; v < options.variants; ++v) {
+        const SeatSpec& s = r.seat;
         const FurnitureSpec seat = PlaceSeat(
-            seat_def.height + (v == 0 ? 0.0 : rng.Uniform(-0.03, 0.02)),
-            seat_def.furniture == "sofa" ? 0.55 : 0.45, seat_def.furniture == "sofa" ? 1.6 : 0.5);
-        const std::vector<std::string> furn = {seat_def.furniture,
-                                               seat_def.furniture == "sofa" ? "couch" : "armchair"};
-        const bool tired = seat_def.furniture == "sofa";
+            s.height + (v == 0 ? 0.0 : rng.Uniform(s.height_jitter[0], s.height_jitter[1])),
+            s.depth, s.width);
         if (wanted("sit")) {
-          MotionClip c = SitDown(
-              seat, tired ? 0.7 : 1.0, tired ? 1.8 : 2.2, 1.5,
-              SyntheticMeta("sit_down_" + seat_def.name + Suffix(v), "sit",
-                            tired ? "tired" : "neutral", tired ? "plopping down" : "controlled",
-                            {"a person sits down on the " + seat_def.furniture,
-                             std::string(tired ? "someone drops wearily onto the "
-                                               : "someone carefully sits on the ") +
-                                 seat_def.furniture,
-                             "sitting down on a " + seat_def.furniture,
-                             "a person lowers themselves onto a seat"},
-                            furn),
-              fps, rng.NextU64());
-          out.push_back(std::move(c));
+          out.push_back(SitDown(seat, r.sit.lean, r.sit.sit_time, r.sit.hold,
+                                Meta(r.sit, "sit", v, {}), fps, rng.NextU64()));
         }
         if (wanted("getup")) {
-          MotionClip down = SitDown(seat, 1.25, 1.9, 0.8, MotionMeta{}, fps, rng.NextU64());
-          out.push_back(
-              Reversed(down, SyntheticMeta("getup_from_" + seat_def.name + Suffix(v), "getup",
-                                           "neutral", "stand up",
-                                           {"a person stands up from the " + seat_def.furniture,
-                                            "someone gets up from a seat",
-                                            "rising from the " + seat_def.furniture + " to stand",
-                                            "a person pushes up out of the " + seat_def.furniture},
-                                           furn)));
+          MotionClip down = SitDown(seat, r.getup.lean, r.getup.sit_time, r.getup.hold,
+                                    MotionMeta{}, fps, rng.NextU64());
+          out.push_back(Reversed(down, Meta(r.getup, "getup", v, {})));
         }
       }
     }
   }
 
   if (wanted("sit")) {
-    struct SitIdle {
-      std::string name, emotion, style;
-      std::vector<std::string> captions;
-      std::function<void(BodyKey&, IdleNoise&)> edit;
-    };
-    const std::vector<SitIdle> sits = {
-        {"sit_idle_upright",
-         "neutral",
-         "upright",
-         {"a person sits upright on a chair", "sitting straight with hands on the thighs",
-          "someone sits still and looks around", "a person waits seated"},
-         [](BodyKey&, IdleNoise& n) { n.look = Deg(20); }},
-        {"sit_idle_lean_back",
-         "relaxed",
-         "lean back",
-         {"a person leans back relaxed in the seat", "sitting comfortably, leaning back",
-          "someone lounges in a chair", "a relaxed person reclines while sitting"},
-         [](BodyKey& k, IdleNoise& n) {
-           k.pelvis.x() -= 0.04;
-           k.pitch = -Deg(14), k.dofs[kAbdY] = -Deg(4), k.dofs[kNeckY] = Deg(12);
-           const SkeletonPose sp = PoseOf(k);
-           HandsTo(&k, OnThigh(sp, false, 0.5), OnThigh(sp, true, 0.5));
-           n.look = Deg(12);
-         }},
-        {"sit_idle_legs_crossed",
-         "relaxed",
-         "legs crossed",
-         {"a person sits with the right leg crossed over the left",
-          "sitting cross-legged on a chair", "someone sits with legs crossed",
-          "a person crosses the legs while seated"},
-         [](BodyKey& k, IdleNoise& n) {
-           // Right knee over the left one, right foot hanging beside the left shin.
-           k.limbs[3].target.y() = 0.06;
-           const SkeletonPose sp = PoseOf(k);
-           LimbKey& r = k.limbs[2];
-           r.target = sp.pos[sim::kLeftShin] + Eigen::Vector3d(0.05, 0.13, -0.16);
-           r.yaw = Deg(20), r.pitch = Deg(25);
-           r.hint = Eigen::Vector3d(0.3, 0.4, 1);
-           // Hands rest on the crossed thigh.
-           const SkeletonPose crossed = PoseOf(k);
-           HandsTo(&k, OnThigh(crossed, false, 0.4) + Eigen::Vector3d(0, -0.03, 0),
-                   OnThigh(crossed, false, 0.85) + Eigen::Vector3d(0, 0.05, 0));
-           n.look = Deg(15);
-         }},
-        {"sit_idle_hands_on_knees",
-         "neutral",
-         "hands on knees",
-         {"a person sits with the hands on the knees",
-          "sitting forward, hands resting on the knees",
-          "someone sits attentively with hands on knees"},
-         [](BodyKey& k, IdleNoise& n) {
-           k.pitch = Deg(10), k.dofs[kAbdY] = Deg(8);
-           const SkeletonPose sp = PoseOf(k);
-           HandsTo(&k, sp.pos[sim::kRightShin] + Eigen::Vector3d(0.02, 0, 0.09),
-                   sp.pos[sim::kLeftShin] + Eigen::Vector3d(0.02, 0, 0.09));
-           n.look = Deg(10);
-         }},
-    };
-    for (const SitIdle& r : sits) {
+    const SitIdleSection& sec = catalog.sit_idle;
+    for (const IdleRecipe& r : sec.recipes) {
       for (int v = 0; v < options.variants; ++v) {
-        const FurnitureSpec seat =
-            PlaceSeat(0.44 + (v == 0 ? 0.0 : rng.Uniform(-0.04, 0.02)), 0.45, 0.5);
+        const SeatSpec& s = sec.seat;
+        const FurnitureSpec seat = PlaceSeat(
+            s.height + (v == 0 ? 0.0 : rng.Uniform(s.height_jitter[0], s.height_jitter[1])),
+            s.depth, s.width);
         BodyKey k = SeatedKey(seat, 0.0);
-        IdleNoise n;
-        r.edit(k, n);
+        ApplyEdit(r.key, seat, &k);
+        IdleNoise n = NoiseOf(r.noise);
         n.seed = rng.NextU64();
-        out.push_back(Build({k, At(k, 6.0, true)}, n,
-                            SyntheticMeta(r.name + Suffix(v), "sit", r.emotion, r.style, r.captions,
-                                          {"chair", "sofa", "armchair"}),
+        out.push_back(Build({k, At(k, sec.duration, true)}, n, Meta(r, "sit", v, sec.furniture),
                             fps, {seat}));
       }
     }
   }
 
+  const BedSection& beds = catalog.bed;
+  auto next_bed = [&](int v) {
+    return BedFor(v == 0 ? beds.height
+                         : rng.Uniform(beds.variant_height[0], beds.variant_height[1]));
+  };
   if (wanted("lie") || wanted("getup")) {
     for (int v = 0; v < options.variants; ++v) {
-      const FurnitureSpec bed = BedFor(v == 0 ? 0.48 : rng.Uniform(0.42, 0.52));
+      const FurnitureSpec bed = next_bed(v);
       if (wanted("lie")) {
         std::vector<BodyKey> keys = LieDownKeys(bed);
-        keys.push_back(At(keys.back(), keys.back().t + 1.5, true));
+        keys.push_back(At(keys.back(), keys.back().t + beds.lie_hold, true));
         IdleNoise n;
         n.seed = rng.NextU64();
-        out.push_back(Build(
-            keys, n,
-            SyntheticMeta("lie_down_bed" + Suffix(v), "lie", "tired", "lie down",
-                          {"a person lies down on the bed", "someone sits on the bed and lies back",
-                           "getting into bed and lying down", "a tired person lies down to rest"},
-                          {"bed"}),
-            fps, {bed}));
+        out.push_back(Build(keys, n, Meta(beds.lie_down, "lie", v, beds.furniture), fps, {bed}));
       }
       if (wanted("getup")) {
         std::vector<BodyKey> keys = LieDownKeys(bed);
         IdleNoise n;
         n.seed = rng.NextU64();
         MotionClip down = Build(keys, n, MotionMeta{}, fps, {bed});
-        out.push_back(Reversed(
-            down,
-            SyntheticMeta("getup_from_bed" + Suffix(v), "getup", "neutral", "get out of bed",
-                          {"a person gets up from the bed", "someone sits up in bed and stands up",
-                           "getting out of bed", "a person rises from lying on the bed"},
-                          {"bed"})));
+        out.push_back(Reversed(down, Meta(beds.getup, "getup", v, beds.furniture)));
       }
     }
   }
 
   if (wanted("lie")) {
-    struct LieIdle {
-      std::string name, emotion, style;
-      std::vector<std::string> captions;
-      std::function<void(BodyKey&, const FurnitureSpec&)> edit;
-    };
-    const std::vector<LieIdle> lies = {
-        {"lie_idle_back",
-         "relaxed",
-         "on back",
-         {"a person lies on the back on the bed", "lying flat on the back, resting",
-          "someone rests lying face up", "a person lies still in bed"},
-         [](BodyKey&, const FurnitureSpec&) {}},
-        {"lie_idle_side",
-         "tired",
-         "on side",
-         {"a person lies on the side on the bed", "lying curled up on one side",
-          "someone sleeps on their side", "a person rests lying sideways"},
-         [](BodyKey& k, const FurnitureSpec& bed) {
-           k.yaw = 0, k.pitch = 0, k.roll = -Deg(80);
-           k.pelvis = Eigen::Vector3d(bed.front_x - 0.5, 0.0, bed.height + 0.12);
-           k.dofs = DofVector::Zero();
-           k.dofs[kRHipY] = k.dofs[kLHipY] = -Deg(50);
-           k.dofs[kRKnee] = k.dofs[kLKnee] = Deg(65);
-           k.dofs[kLShY] = -Deg(80), k.dofs[kLElbow] = -Deg(70);
-           k.dofs[kRShY] = -Deg(10), k.dofs[kRShX] = -Deg(5), k.dofs[kRElbow] = -Deg(30);
-           k.dofs[kAbdY] = Deg(10), k.dofs[kNeckY] = Deg(10);
-         }},
-        {"lie_idle_knees_up",
-         "relaxed",
-         "knees up",
-         {"a person lies on the back with the knees up", "lying on the bed with knees bent",
-          "someone rests on their back, feet flat on the bed"},
-         [](BodyKey& k, const FurnitureSpec& bed) {
-           const SkeletonPose sp = PoseOf(k);
-           for (int leg = 0; leg < 2; ++leg) {
-             const int thigh = leg == 0 ? sim::kRightThigh : sim::kLeftThigh;
-             LimbKey& l = k.limbs[2 + leg];
-             l.weight = 1;
-             l.target = sp.pos[thigh] + Eigen::Vector3d(0, -0.5, 0);
-             l.target.z() = bed.height + FootOf(Skel()).ankle_height;
-             l.yaw = -Deg(90), l.pitch = 0;
-             l.hint = Eigen::Vector3d(0, 0, 1);
-           }
-         }},
-    };
-    for (const LieIdle& r : lies) {
+    const LieIdleSection& sec = catalog.lie_idle;
+    for (const IdleRecipe& r : sec.recipes) {
       for (int v = 0; v < options.variants; ++v) {
-        const FurnitureSpec bed = BedFor(v == 0 ? 0.48 : rng.Uniform(0.42, 0.52));
+        const FurnitureSpec bed = next_bed(v);
         BodyKey k = SupineKey(bed, 0.0);
-        r.edit(k, bed);
-        IdleNoise n;
+        ApplyEdit(r.key, bed, &k);
+        IdleNoise n = NoiseOf(r.noise);
         n.seed = rng.NextU64();
-        n.look = Deg(10);
         out.push_back(
-            Build({k, At(k, 6.0, true)}, n,
-                  SyntheticMeta(r.name + Suffix(v), "lie", r.emotion, r.style, r.captions, {"bed"}),
-                  fps, {bed}));
+            Build({k, At(k, sec.duration, true)}, n, Meta(r, "lie", v, sec.furniture), fps, {bed}));
       }
     }
   }
 
   if (wanted("reach")) {
-    struct Height {
-      std::string name;
-      double x, z;
-    };
-    const Height heights[] = {{"low", 0.45, 0.45}, {"medium", 0.5, 1.05}, {"high", 0.32, 1.7}};
-    for (const char* side : {"right", "left"}) {
-      const bool left = std::string(side) == "left";
+    const ReachSection& sec = catalog.reach;
+    const double j = sec.target_jitter;
+    for (const ReachRecipe& r : sec.recipes) {
+      const bool left = r.side == "left";
       const double sgn = left ? 1 : -1;
-      for (const Height& ht : heights) {
-        for (int v = 0; v < options.variants; ++v) {
-          const Eigen::Vector3d target(ht.x + (v ? rng.Uniform(-0.05, 0.05) : 0),
-                                       sgn * (0.25 + (v ? rng.Uniform(-0.05, 0.05) : 0)),
-                                       ht.z + (v ? rng.Uniform(-0.05, 0.05) : 0));
-          BodyKey stand = StandingKey(0.0, 0.1);
-          HandsAtRest(&stand);
-          const int arm = left ? 1 : 0;
-          stand.limbs[arm].hint = Eigen::Vector3d(-0.2, sgn, -1);
-          BodyKey reach = stand;
-          reach.t = 1.5;
-          reach.hold = true;
-          reach.limbs[arm].weight = 1;
-          reach.limbs[arm].target = target;
-          if (ht.name == "low") {
-            reach.pelvis = Eigen::Vector3d(-0.12, 0, h_stand - 0.26);
-            reach.pitch = Deg(40), reach.dofs[kAbdY] = Deg(20), reach.dofs[kNeckY] = -Deg(20);
-            reach.limbs[arm].hint = Eigen::Vector3d(-0.5, sgn, 0);
-          } else if (ht.name == "medium") {
-            reach.pelvis.x() = 0.02;
-            reach.pitch = Deg(6), reach.dofs[kAbdY] = Deg(4);
-          } else {
-            reach.pitch = -Deg(3), reach.dofs[kAbdY] = -Deg(4), reach.dofs[kNeckY] = -Deg(25);
-            reach.limbs[arm].hint = Eigen::Vector3d(0, sgn, -0.3);
-          }
-          reach.dofs[kAbdZ] = -sgn * Deg(8);
-          reach.dofs[kNeckZ] = sgn * Deg(15);
-          BodyKey hold = reach;
-          hold.t = 2.6;
-          hold.limbs[arm].target += Eigen::Vector3d(0.01, 0, 0.01);
-          std::vector<BodyKey> keys = {stand, At(stand, 0.5, true), reach,
-                                       hold,  At(stand, 3.7, true), At(stand, 4.3, true)};
-          IdleNoise n;
-          n.seed = rng.NextU64();
-          MotionClip c =
-              Build(keys, n,
-                    SyntheticMeta(std::string("reach_") + side + "_" + ht.name + Suffix(v), "reach",
-                                  "neutral", std::string(side) + " hand " + ht.name,
-                                  {std::string("a person reaches ") +
-                                       (ht.name == "low"    ? "down"
-                                        : ht.name == "high" ? "up"
-                                                            : "forward") +
-                                       " with the " + side + " hand",
-                                   std::string("someone touches something ") +
-                                       (ht.name == "low"    ? "low"
-                                        : ht.name == "high" ? "high up"
-                                                            : "at chest height") +
-                                       " with the " + side + " hand",
-                                   std::string("reaching out with the ") + side + " arm",
-                                   std::string("a person stretches the ") + side +
-                                       " hand toward a " + ht.name + " target"},
-                                  {ht.name == "low" ? "table" : "shelf", "cabinet"}),
-                    fps, {});
-          c.mutable_meta().params["target_x"] = target.x();
-          c.mutable_meta().params["target_y"] = target.y();
-          c.mutable_meta().params["target_z"] = target.z();
-          out.push_back(std::move(c));
-        }
+      for (int v = 0; v < options.variants; ++v) {
+        // One constructor call as before: the compiler's argument order fixes the draw order.
+        const Eigen::Vector3d target(r.target[0] + (v ? rng.Uniform(-j, j) : 0),
+                                     sgn * (r.target[1] + (v ? rng.Uniform(-j, j) : 0)),
+                                     r.target[2] + (v ? rng.Uniform(-j, j) : 0));
+        BodyKey stand = StandingKey(0.0, 0.1);
+        HandsAtRest(&stand);
+        const int arm = left ? 1 : 0;
+        stand.limbs[arm].hint =
+            Eigen::Vector3d(sec.rest_hint[0], sgn * sec.rest_hint[1], sec.rest_hint[2]);
+        BodyKey reach = stand;
+        reach.t = 1.5;
+        reach.hold = true;
+        reach.limbs[arm].weight = 1;
+        reach.limbs[arm].target = target;
+        if (r.pelvis_drop) reach.pelvis = Eigen::Vector3d(0, 0, h_stand - *r.pelvis_drop);
+        if (r.pelvis_x) reach.pelvis.x() = *r.pelvis_x;
+        if (r.pitch_deg) reach.pitch = Deg(*r.pitch_deg);
+        SetDofs(r.dofs_deg, 1.0, &reach);
+        if (r.hint)
+          reach.limbs[arm].hint = Eigen::Vector3d((*r.hint)[0], sgn * (*r.hint)[1], (*r.hint)[2]);
+        SetDofs(sec.side_dofs_deg, sgn, &reach);
+        BodyKey hold = reach;
+        hold.t = 2.6;
+        hold.limbs[arm].target += Eigen::Vector3d(0.01, 0, 0.01);
+        std::vector<BodyKey> keys = {stand, At(stand, 0.5, true), reach,
+                                     hold,  At(stand, 3.7, true), At(stand, 4.3, true)};
+        IdleNoise n;
+        n.seed = rng.NextU64();
+        MotionClip c = Build(keys, n, Meta(r, "reach", v, {}), fps, {});
+        c.mutable_meta().params["target_x"] = target.x();
+        c.mutable_meta().params["target_y"] = target.y();
+        c.mutable_meta().params["target_z"] = target.z();
+        out.push_back(std::move(c));
       }
     }
   }

@@ -80,6 +80,14 @@ struct WalkKey {
   double t = 0;         ///< Time (s).
   double speed = 0;     ///< Forward speed.
   double yaw_rate = 0;  ///< Turn rate.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(t));
+    a->Visit(SIMS_NVP(speed));
+    a->Visit(SIMS_NVP(yaw_rate));
+  }
 };
 
 /// One walk clip.
@@ -123,9 +131,10 @@ struct SyntheticOptions {
   void Validate() const;
 };
 
-/// The whole synthetic catalogue (deterministic for a seed): walks in several styles,
-/// speeds and turns, starts/stops and turns in place; standing idles; sit down / sit idle;
-/// lie down / lie idle; reaches; get-ups from seats and beds.
+/// The clips of the shipped catalogue (configs/motion/synthetic_catalog.json, see
+/// synthetic_catalog.h; deterministic for a seed): walks in several styles, speeds and turns,
+/// starts/stops and turns in place; standing idles; sit down / sit idle; lie down / lie idle;
+/// reaches; get-ups from seats and beds.
 std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options);
 
 /// Quality figures of a clip (used by tests and the generator's self-check).
