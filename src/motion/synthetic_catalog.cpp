@@ -2,8 +2,9 @@
 // with the shared key shapes (sit-down, lie-down, reach timing) and the named poses.
 #include <algorithm>
 #include <cmath>
-#include <functional>
+#include <map>
 #include <set>
+#include <string>
 
 #include <spdlog/spdlog.h>
 #include "motion/synthetic_internal.h"
