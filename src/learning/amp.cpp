@@ -1,4 +1,4 @@
-#include "sims/learning/amp.h"
+#include "learning/amp.h"
 
 namespace sims::learning {
 

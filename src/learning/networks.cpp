@@ -1,4 +1,4 @@
-#include "sims/learning/networks.h"
+#include "learning/networks.h"
 
 #include "sims/core/error.h"
 

@@ -1,4 +1,4 @@
-#include "sims/learning/ppo.h"
+#include "learning/ppo.h"
 
 #include <cmath>
 

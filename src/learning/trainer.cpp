@@ -13,13 +13,13 @@
 
 #include <torch/torch.h>
 
+#include "learning/amp.h"
+#include "learning/networks.h"
+#include "learning/ppo.h"
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/parallel.h"
-#include "sims/learning/amp.h"
 #include "sims/learning/distributed.h"
-#include "sims/learning/networks.h"
-#include "sims/learning/ppo.h"
 
 namespace sims::learning {
 
@@ -100,6 +100,40 @@ struct Trainer::Impl {
     }
     return p;
   }
+
+  /// What a rollout gathered besides the buffers.
+  struct Rollout {
+    double return_sum = 0, length_sum = 0, success_sum = 0, fall_sum = 0;
+    int64_t episodes = 0;
+    double seconds = 0, env_seconds = 0;
+  };
+  /// One iteration's training batch, flattened to [T·N, ·].
+  struct Batch {
+    torch::Tensor obs, obs_norm, actions, log_probs, advantages, returns;
+    torch::Tensor reward, style_reward;   // [T, N]
+    torch::Tensor amp, amp_norm, styles;  // AMP only
+  };
+  /// Loss sums over minibatches (each weighted by this rank's share).
+  struct UpdateTotals {
+    double actor = 0, critic = 0, bounds = 0, disc = 0, grad_penalty = 0, demo_accuracy = 0,
+           agent_accuracy = 0, clip_fraction = 0;
+    int64_t steps = 0, disc_samples = 0, minibatch = 0;
+  };
+  /// Seconds of the update phases (for the time split).
+  struct Timings {
+    double disc = 0, ppo = 0;
+  };
+  /// Steps the environments for one horizon with the current policy, filling the buffers.
+  Rollout CollectRollout();
+  /// Style rewards, GAE advantages and normalised targets of the collected buffers.
+  Batch PrepareBatch(Timings* timing);
+  /// Mini-epochs of PPO (+ discriminator) steps over the batch.
+  UpdateTotals Update(const Batch& b, Timings* timing);
+  /// Accumulates the PPO loss gradients of samples `idx`.
+  void PpoLoss(const Batch& b, const torch::Tensor& idx, double share, UpdateTotals* u);
+  /// Accumulates the discriminator loss gradients for policy windows `agent_idx`.
+  void DiscriminatorLoss(const Batch& b, const torch::Tensor& agent_idx, double share,
+                         UpdateTotals* u);
 
   /// Networks, normalisers, optimiser, minibatch stream and counters: what all ranks share.
   void WriteLearnerState(torch::serialize::OutputArchive& archive) const;
@@ -349,315 +383,327 @@ Trainer::~Trainer() = default;
 int64_t Trainer::iteration() const { return impl_->iteration; }
 const LearnerConfig& Trainer::config() const { return impl_->cfg; }
 
-IterationStats Trainer::RunIteration() {
-  auto& m = *impl_;
-  const auto& ppo = m.cfg.ppo;
-  const auto& ampc = m.cfg.amp;
-  const int64_t T = ppo.horizon, N = m.n, D = m.obs_dim, A = m.act_dim, W = m.amp_dim;
-  IterationStats st;
-  const auto t_iter = Clock::now();
-  float* obs_p = m.obs_buf.data_ptr<float>();
-  float* act_p = m.act_buf.data_ptr<float>();
-  float* logp_p = m.logp_buf.data_ptr<float>();
-  float* val_p = m.val_buf.data_ptr<float>();
-  float* rew_p = m.rew_buf.data_ptr<float>();
-  float* done_p = m.done_buf.data_ptr<float>();
-  float* boot_p = m.boot_buf.data_ptr<float>();
-  std::fill(boot_p, boot_p + T * N, 0.0f);  // V(terminal) for time-outs, 0 for terminations
-  const float sigma = static_cast<float>(std::exp(m.ac->log_std()));
-  double ret_sum = 0, len_sum = 0, succ_sum = 0, fall_sum = 0;
-  int64_t episodes = 0;
+// ---- one iteration: rollout → batch (style rewards, advantages) → minibatch updates -----------
 
-  // ---- rollout -----------------------------------------------------------------------------
+Trainer::Impl::Rollout Trainer::Impl::CollectRollout() {
+  const int64_t T = cfg.ppo.horizon, N = n, D = obs_dim, A = act_dim, W = amp_dim;
+  Rollout out;
+  float* obs_p = obs_buf.data_ptr<float>();
+  float* act_p = act_buf.data_ptr<float>();
+  float* logp_p = logp_buf.data_ptr<float>();
+  float* val_p = val_buf.data_ptr<float>();
+  float* rew_p = rew_buf.data_ptr<float>();
+  float* done_p = done_buf.data_ptr<float>();
+  float* boot_p = boot_buf.data_ptr<float>();
+  std::fill(boot_p, boot_p + T * N, 0.0f);  // V(terminal) for time-outs, 0 for terminations
+  const float sigma = static_cast<float>(std::exp(ac->log_std()));
   // Buffers are written through raw pointers and the networks run in inference mode: per step
   // the learner adds a handful of tensor ops to the environment step, no autograd records.
   const auto t_collect = Clock::now();
-  double env_s = 0;
-  {
-    torch::InferenceMode guard;
-    std::memcpy(obs_p, m.env->observations(), sizeof(float) * N * D);
-    for (int64_t t = 0; t < T; ++t) {
-      float* o_t = obs_p + t * N * D;
-      const auto obs = torch::from_blob(o_t, {N, D});
-      const auto norm = m.obs_norm->Normalize(obs);
-      const auto mu = m.ac->Mean(norm, obs).contiguous();
-      const auto v = m.ValuesOf(norm, obs).contiguous();
-      std::memcpy(val_p + t * N, v.data_ptr<float>(), sizeof(float) * N);
-      const float* mu_p = mu.data_ptr<float>();
-      float* a_t = act_p + t * N * A;
-      for (int64_t i = 0; i < N; ++i)
-        for (int64_t j = i * A; j < (i + 1) * A; ++j)
-          a_t[j] = mu_p[j] + sigma * static_cast<float>(m.noise_rng[i].Normal());
-      const auto logp = GaussianLogProb(torch::from_blob(a_t, {N, A}), mu, m.ac->log_std());
-      std::memcpy(logp_p + t * N, logp.contiguous().data_ptr<float>(), sizeof(float) * N);
-      if (m.use_amp && m.style_dim > 0 && m.env->style_ids()) {
-        const int* ids = m.env->style_ids();
-        int64_t* s_t = m.style_buf.data_ptr<int64_t>() + t * N;
-        for (int64_t i = 0; i < N; ++i) s_t[i] = ids[i];
-      }
-      const auto t_env = Clock::now();
-      m.env->Step(a_t);
-      env_s += Since(t_env);
-      const float* r = m.env->rewards();
-      const uint8_t* done = m.env->dones();
-      const uint8_t* term = m.env->terminated();
-      const uint8_t* succ = m.env->successes();
-      std::memcpy(rew_p + t * N, r, sizeof(float) * N);
-      std::vector<int64_t> timeouts;
-      for (int64_t i = 0; i < N; ++i) {
-        done_p[t * N + i] = done[i] ? 1.0f : 0.0f;
-        if (done[i] && !term[i]) timeouts.push_back(i);
-      }
-      if (!timeouts.empty()) {
-        const auto idx = torch::tensor(timeouts, torch::kInt64);
-        const auto term_obs =
-            torch::from_blob(const_cast<float*>(m.env->terminal_observations()), {N, D})
-                .index_select(0, idx);
-        const auto tv = m.ValuesOf(m.obs_norm->Normalize(term_obs), term_obs).contiguous();
-        for (size_t k = 0; k < timeouts.size(); ++k)
-          boot_p[t * N + timeouts[k]] = tv.data_ptr<float>()[k];
-      }
-      if (m.use_amp)
-        std::memcpy(m.amp_buf.data_ptr<float>() + t * N * W, m.env->amp_observations(),
-                    sizeof(float) * N * W);
-      // Episode bookkeeping uses the task reward; the style part is added after the rollout.
-      for (int64_t i = 0; i < N; ++i) {
-        m.ep_return[i] += r[i];
-        m.ep_len[i] += 1;
-        m.ep_success[i] |= succ[i];
-        if (done[i]) {
-          ret_sum += m.ep_return[i];
-          len_sum += m.ep_len[i];
-          succ_sum += m.ep_success[i];
-          fall_sum += term[i];
-          ++episodes;
-          m.ep_return[i] = m.ep_len[i] = 0;
-          m.ep_success[i] = 0;
-        }
-      }
-      float* next = t + 1 < T ? o_t + N * D : m.last_obs.data_ptr<float>();
-      std::memcpy(next, m.env->observations(), sizeof(float) * N * D);
+  torch::InferenceMode guard;
+  std::memcpy(obs_p, env->observations(), sizeof(float) * N * D);
+  for (int64_t t = 0; t < T; ++t) {
+    float* o_t = obs_p + t * N * D;
+    const auto obs = torch::from_blob(o_t, {N, D});
+    const auto norm = obs_norm->Normalize(obs);
+    const auto mu = ac->Mean(norm, obs).contiguous();
+    const auto v = ValuesOf(norm, obs).contiguous();
+    std::memcpy(val_p + t * N, v.data_ptr<float>(), sizeof(float) * N);
+    const float* mu_p = mu.data_ptr<float>();
+    float* a_t = act_p + t * N * A;
+    for (int64_t i = 0; i < N; ++i)
+      for (int64_t j = i * A; j < (i + 1) * A; ++j)
+        a_t[j] = mu_p[j] + sigma * static_cast<float>(noise_rng[i].Normal());
+    const auto logp = GaussianLogProb(torch::from_blob(a_t, {N, A}), mu, ac->log_std());
+    std::memcpy(logp_p + t * N, logp.contiguous().data_ptr<float>(), sizeof(float) * N);
+    if (use_amp && style_dim > 0 && env->style_ids()) {
+      const int* ids = env->style_ids();
+      int64_t* s_t = style_buf.data_ptr<int64_t>() + t * N;
+      for (int64_t i = 0; i < N; ++i) s_t[i] = ids[i];
     }
-    const auto v = m.ValuesOf(m.obs_norm->Normalize(m.last_obs), m.last_obs).contiguous();
-    std::memcpy(val_p + T * N, v.data_ptr<float>(), sizeof(float) * N);
+    const auto t_env = Clock::now();
+    env->Step(a_t);
+    out.env_seconds += Since(t_env);
+    const float* r = env->rewards();
+    const uint8_t* done = env->dones();
+    const uint8_t* term = env->terminated();
+    const uint8_t* succ = env->successes();
+    std::memcpy(rew_p + t * N, r, sizeof(float) * N);
+    std::vector<int64_t> timeouts;
+    for (int64_t i = 0; i < N; ++i) {
+      done_p[t * N + i] = done[i] ? 1.0f : 0.0f;
+      if (done[i] && !term[i]) timeouts.push_back(i);
+    }
+    if (!timeouts.empty()) {
+      const auto idx = torch::tensor(timeouts, torch::kInt64);
+      const auto term_obs =
+          torch::from_blob(const_cast<float*>(env->terminal_observations()), {N, D})
+              .index_select(0, idx);
+      const auto tv = ValuesOf(obs_norm->Normalize(term_obs), term_obs).contiguous();
+      for (size_t k = 0; k < timeouts.size(); ++k)
+        boot_p[t * N + timeouts[k]] = tv.data_ptr<float>()[k];
+    }
+    if (use_amp)
+      std::memcpy(amp_buf.data_ptr<float>() + t * N * W, env->amp_observations(),
+                  sizeof(float) * N * W);
+    // Episode bookkeeping uses the task reward; the style part is added after the rollout.
+    for (int64_t i = 0; i < N; ++i) {
+      ep_return[i] += r[i];
+      ep_len[i] += 1;
+      ep_success[i] |= succ[i];
+      if (done[i]) {
+        out.return_sum += ep_return[i];
+        out.length_sum += ep_len[i];
+        out.success_sum += ep_success[i];
+        out.fall_sum += term[i];
+        ++out.episodes;
+        ep_return[i] = ep_len[i] = 0;
+        ep_success[i] = 0;
+      }
+    }
+    float* next = t + 1 < T ? o_t + N * D : last_obs.data_ptr<float>();
+    std::memcpy(next, env->observations(), sizeof(float) * N * D);
   }
-  const double collect_s = Since(t_collect);
-  m.samples += T * N * m.world;
+  const auto v = ValuesOf(obs_norm->Normalize(last_obs), last_obs).contiguous();
+  std::memcpy(val_p + T * N, v.data_ptr<float>(), sizeof(float) * N);
+  out.seconds = Since(t_collect);
+  return out;
+}
 
-  // ---- style rewards (discriminator), advantages -------------------------------------------
-  double disc_s = 0, ppo_s = 0;
+Trainer::Impl::Batch Trainer::Impl::PrepareBatch(Timings* timing) {
+  const auto& ppo = cfg.ppo;
+  const auto& ampc = cfg.amp;
+  const int64_t T = ppo.horizon, N = n;
+  Batch b;
   auto t_phase = Clock::now();
-  torch::Tensor style_rew = torch::zeros({T, N});
-  torch::Tensor amp_flat, style_flat, amp_flat_norm;
-  if (m.use_amp) {
-    torch::NoGradGuard guard;
-    amp_flat = m.amp_buf.reshape({T * N, W});
-    style_flat = m.style_buf.reshape({T * N});
+  b.style_reward = torch::zeros({T, N});
+  torch::NoGradGuard guard;
+  if (use_amp) {
+    b.amp = amp_buf.reshape({T * N, amp_dim});
+    b.styles = style_buf.reshape({T * N});
     // amp_norm changes only after the update, so the policy windows are normalised once.
-    amp_flat_norm = m.amp_norm->Normalize(amp_flat);
-    const auto logits = m.disc->forward(amp_flat_norm, m.StyleOf(style_flat));
-    style_rew = StyleReward(logits, ampc).reshape({T, N});
-    disc_s += Since(t_phase);
+    b.amp_norm = amp_norm->Normalize(b.amp);
+    const auto logits = disc->forward(b.amp_norm, StyleOf(b.styles));
+    b.style_reward = StyleReward(logits, ampc).reshape({T, N});
+    timing->disc += Since(t_phase);
     t_phase = Clock::now();
   }
-  torch::Tensor reward, adv, ret_target, obs_f, norm_obs_f, act_f, logp_f, adv_f;
-  {
-    torch::NoGradGuard guard;
-    reward = m.use_amp ? ampc.task_weight * m.rew_buf + ampc.style_weight * style_rew : m.rew_buf;
-    auto next_val = m.val_buf.slice(0, 1, T + 1).clone();
-    next_val = torch::where(m.done_buf > 0.5, m.boot_buf, next_val);
-    const auto values = m.val_buf.slice(0, 0, T);
-    adv = ComputeGae(reward, values, next_val, m.done_buf, ppo.gamma, ppo.lambda);
-    const auto returns = adv + values;
-    if (ppo.normalize_value) m.UpdateNorm(m.value_norm, returns.reshape({-1, 1}));
-    obs_f = m.obs_buf.reshape({T * N, D});
-    // obs_norm changes only after the update: normalise the whole batch once.
-    norm_obs_f = m.obs_norm->Normalize(obs_f);
-    act_f = m.act_buf.reshape({T * N, A});
-    logp_f = m.logp_buf.reshape({T * N});
-    const auto ret_f = returns.reshape({T * N});
-    adv_f = adv.reshape({T * N});
-    if (ppo.normalize_advantage) {
-      if (m.comm) {
-        const auto [mean, std] = m.GlobalMeanStd(adv_f);
-        adv_f = (adv_f - mean) / (std + 1e-8);
-      } else {
-        adv_f = (adv_f - adv_f.mean()) / (adv_f.std() + 1e-8);
-      }
+  b.reward = use_amp ? ampc.task_weight * rew_buf + ampc.style_weight * b.style_reward : rew_buf;
+  auto next_val = val_buf.slice(0, 1, T + 1).clone();
+  next_val = torch::where(done_buf > 0.5, boot_buf, next_val);
+  const auto values = val_buf.slice(0, 0, T);
+  const auto adv = ComputeGae(b.reward, values, next_val, done_buf, ppo.gamma, ppo.lambda);
+  const auto returns = adv + values;
+  if (ppo.normalize_value) UpdateNorm(value_norm, returns.reshape({-1, 1}));
+  b.obs = obs_buf.reshape({T * N, obs_dim});
+  // obs_norm changes only after the update: normalise the whole batch once.
+  b.obs_norm = obs_norm->Normalize(b.obs);
+  b.actions = act_buf.reshape({T * N, act_dim});
+  b.log_probs = logp_buf.reshape({T * N});
+  const auto ret_f = returns.reshape({T * N});
+  b.advantages = adv.reshape({T * N});
+  if (ppo.normalize_advantage) {
+    if (comm) {
+      const auto [mean, std] = GlobalMeanStd(b.advantages);
+      b.advantages = (b.advantages - mean) / (std + 1e-8);
+    } else {
+      b.advantages = (b.advantages - b.advantages.mean()) / (b.advantages.std() + 1e-8);
     }
-    ret_target =
-        ppo.normalize_value ? m.value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
   }
-  ppo_s += Since(t_phase);
+  b.returns = ppo.normalize_value ? value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
+  timing->ppo += Since(t_phase);
+  return b;
+}
 
-  // ---- update ------------------------------------------------------------------------------
+void Trainer::Impl::PpoLoss(const Batch& b, const torch::Tensor& idx, double share,
+                            UpdateTotals* u) {
+  const auto& ppo = cfg.ppo;
+  const auto o = b.obs.index_select(0, idx);
+  const auto norm_o = b.obs_norm.index_select(0, idx);
+  const auto mu = ac->Mean(norm_o, o);
+  const auto v = ac->Value(norm_o, o);
+  const auto logp = GaussianLogProb(b.actions.index_select(0, idx), mu, ac->log_std());
+  const auto old_logp = b.log_probs.index_select(0, idx);
+  const auto actor =
+      ClippedSurrogateLoss(logp, old_logp, b.advantages.index_select(0, idx), ppo.clip);
+  const auto critic = (v - b.returns.index_select(0, idx)).pow(2).mean();
+  const auto bounds = BoundsLoss(mu);
+  const auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
+  (world == 1 ? loss : loss * share).backward();
+  u->actor += actor.item<double>() * share;
+  u->critic += critic.item<double>() * share;
+  u->bounds += bounds.item<double>() * share;
+  u->clip_fraction += ClipFraction(logp.detach(), old_logp, ppo.clip) * share;
+}
+
+void Trainer::Impl::DiscriminatorLoss(const Batch& b, const torch::Tensor& agent_idx, double share,
+                                      UpdateTotals* u) {
+  const auto& ampc = cfg.amp;
+  const int64_t na = agent_idx.size(0);
+  auto neg = b.amp_norm.index_select(0, agent_idx);
+  auto neg_style = b.styles.index_select(0, agent_idx);
+  if (replay->size() > 0) {
+    auto [rep, rep_style] = replay->Sample(na, amp_rng);
+    neg = torch::cat({neg, amp_norm->Normalize(rep)});
+    neg_style = torch::cat({neg_style, rep_style});
+  }
+  std::vector<int64_t> demo_idx(na);
+  for (auto& i : demo_idx) i = amp_rng.UniformInt(demo_pool.size(0));
+  const auto di = torch::tensor(demo_idx, torch::kInt64);
+  const auto pos = amp_norm->Normalize(demo_pool.index_select(0, di));
+  const auto pos_style = demo_pool_styles.index_select(0, di);
+  if (style_dim > 0 && ampc.mismatch_fraction > 0 && style_table.size(0) > 1) {
+    // SIMS conditional negatives: real motion paired with another clip's embedding.
+    const int64_t nm = static_cast<int64_t>(ampc.mismatch_fraction * na);
+    std::vector<int64_t> wrong(nm);
+    const int64_t s = style_table.size(0);
+    const int64_t* true_ids = pos_style.data_ptr<int64_t>();
+    for (int64_t i = 0; i < nm; ++i) wrong[i] = (true_ids[i] + 1 + amp_rng.UniformInt(s - 1)) % s;
+    neg = torch::cat({neg, pos.slice(0, 0, nm)});
+    neg_style = torch::cat({neg_style, torch::tensor(wrong, torch::kInt64)});
+  }
+  const auto dl =
+      learning::DiscriminatorLoss(disc, pos, StyleOf(pos_style), neg, StyleOf(neg_style), ampc);
+  (ampc.disc_coef * (world == 1 ? dl.total : dl.total * share)).backward();
+  u->disc += dl.classification * share;
+  u->grad_penalty += dl.grad_penalty * share;
+  u->demo_accuracy += dl.demo_accuracy * share;
+  u->agent_accuracy += dl.agent_accuracy * share;
+  u->disc_samples += pos.size(0) + neg.size(0);
+}
+
+Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timing) {
+  const auto& ppo = cfg.ppo;
+  const int64_t N = n;
   // The PPO and discriminator losses share no parameters: two backward passes give the same
   // gradients as one on their sum, and let the benchmark time each network's share.
-  const auto t_update = Clock::now();
   // With ranks, the batch is the union of all ranks' samples (global flat index
   // t × N_total + global env id); every rank draws the same permutation of it, and in each
   // minibatch trains on the samples it holds, its losses weighted by its share.
-  const int64_t total = T * N * m.world;
-  const int64_t mb = std::min<int64_t>(static_cast<int64_t>(ppo.minibatch_size) * m.world, total);
+  UpdateTotals u;
+  const int64_t total = ppo.horizon * N * world;
+  u.minibatch = std::min<int64_t>(static_cast<int64_t>(ppo.minibatch_size) * world, total);
+  const int64_t mb = u.minibatch;
   const int64_t n_mb = std::max<int64_t>(total / mb, 1);
-  const int64_t na_all = std::min<int64_t>(static_cast<int64_t>(ampc.batch_size) * m.world, mb);
-  const int64_t n_total = N * m.world, first = m.first_env;
+  const int64_t na_all = std::min<int64_t>(static_cast<int64_t>(cfg.amp.batch_size) * world, mb);
+  const int64_t n_total = N * world, first = first_env;
   auto local_of = [&](const torch::Tensor& global) {
-    if (m.world == 1) return global;
-    const auto env = global.remainder(n_total);
-    const auto mask = (env >= first).logical_and(env < first + N);
-    return (global.div(n_total, "floor") * N + env - first).masked_select(mask);
+    if (world == 1) return global;
+    const auto env_id = global.remainder(n_total);
+    const auto mask = (env_id >= first).logical_and(env_id < first + N);
+    return (global.div(n_total, "floor") * N + env_id - first).masked_select(mask);
   };
-  double a_loss = 0, c_loss = 0, b_loss = 0, d_loss = 0, gp = 0, acc_d = 0, acc_a = 0, clipf = 0;
-  int64_t steps = 0, disc_samples = 0;
-  const auto params = m.AllParameters();
-  const auto ac_params = m.ac->parameters();
-  const auto disc_params = m.use_amp ? m.disc->parameters() : std::vector<torch::Tensor>{};
+  const auto params = AllParameters();
+  const auto ac_params = ac->parameters();
+  const auto disc_params = use_amp ? disc->parameters() : std::vector<torch::Tensor>{};
   for (int epoch = 0; epoch < ppo.mini_epochs; ++epoch) {
-    const auto perm = Permutation(m.rng, total);
+    const auto perm = Permutation(rng, total);
     for (int64_t k = 0; k < n_mb; ++k) {
-      t_phase = Clock::now();
+      auto t_phase = Clock::now();
       const auto chunk = perm.slice(0, k * mb, (k + 1) * mb);
       const auto idx = local_of(chunk);
-      const double share = static_cast<double>(idx.size(0)) / static_cast<double>(mb);
-      m.optim->zero_grad();
-      if (idx.size(0) > 0) {
-        const auto o = obs_f.index_select(0, idx);
-        const auto norm_o = norm_obs_f.index_select(0, idx);
-        const auto mu = m.ac->Mean(norm_o, o);
-        const auto v = m.ac->Value(norm_o, o);
-        const auto logp = GaussianLogProb(act_f.index_select(0, idx), mu, m.ac->log_std());
-        const auto old_logp = logp_f.index_select(0, idx);
-        const auto actor =
-            ClippedSurrogateLoss(logp, old_logp, adv_f.index_select(0, idx), ppo.clip);
-        const auto critic = (v - ret_target.index_select(0, idx)).pow(2).mean();
-        const auto bounds = BoundsLoss(mu);
-        const auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
-        (m.world == 1 ? loss : loss * share).backward();
-        a_loss += actor.item<double>() * share;
-        c_loss += critic.item<double>() * share;
-        b_loss += bounds.item<double>() * share;
-        clipf += ClipFraction(logp.detach(), old_logp, ppo.clip) * share;
-      }
-      m.StartReduce(ac_params, &m.ac_grads);
-      ppo_s += Since(t_phase);
-      if (m.use_amp) {
+      optim->zero_grad();
+      if (idx.size(0) > 0)
+        PpoLoss(b, idx, static_cast<double>(idx.size(0)) / static_cast<double>(mb), &u);
+      StartReduce(ac_params, &ac_grads);
+      timing->ppo += Since(t_phase);
+      if (use_amp) {
         t_phase = Clock::now();
         const auto agent_idx = local_of(chunk.slice(0, 0, na_all));
-        const int64_t na = agent_idx.size(0);
-        const double dshare = static_cast<double>(na) / static_cast<double>(na_all);
-        if (na > 0) {
-          auto neg = amp_flat_norm.index_select(0, agent_idx);
-          auto neg_style = style_flat.index_select(0, agent_idx);
-          if (m.replay->size() > 0) {
-            auto [rep, rep_style] = m.replay->Sample(na, m.amp_rng);
-            neg = torch::cat({neg, m.amp_norm->Normalize(rep)});
-            neg_style = torch::cat({neg_style, rep_style});
-          }
-          std::vector<int64_t> demo_idx(na);
-          for (auto& i : demo_idx) i = m.amp_rng.UniformInt(m.demo_pool.size(0));
-          const auto di = torch::tensor(demo_idx, torch::kInt64);
-          const auto pos = m.amp_norm->Normalize(m.demo_pool.index_select(0, di));
-          const auto pos_style = m.demo_pool_styles.index_select(0, di);
-          if (m.style_dim > 0 && ampc.mismatch_fraction > 0 && m.style_table.size(0) > 1) {
-            // SIMS conditional negatives: real motion paired with another clip's embedding.
-            const int64_t nm = static_cast<int64_t>(ampc.mismatch_fraction * na);
-            std::vector<int64_t> wrong(nm);
-            const int64_t s = m.style_table.size(0);
-            const int64_t* true_ids = pos_style.data_ptr<int64_t>();
-            for (int64_t i = 0; i < nm; ++i)
-              wrong[i] = (true_ids[i] + 1 + m.amp_rng.UniformInt(s - 1)) % s;
-            neg = torch::cat({neg, pos.slice(0, 0, nm)});
-            neg_style = torch::cat({neg_style, torch::tensor(wrong, torch::kInt64)});
-          }
-          const auto dl =
-              DiscriminatorLoss(m.disc, pos, m.StyleOf(pos_style), neg, m.StyleOf(neg_style), ampc);
-          (ampc.disc_coef * (m.world == 1 ? dl.total : dl.total * dshare)).backward();
-          d_loss += dl.classification * dshare;
-          gp += dl.grad_penalty * dshare;
-          acc_d += dl.demo_accuracy * dshare;
-          acc_a += dl.agent_accuracy * dshare;
-          disc_samples += pos.size(0) + neg.size(0);
-        }
-        disc_s += Since(t_phase);
+        if (agent_idx.size(0) > 0)
+          DiscriminatorLoss(b, agent_idx,
+                            static_cast<double>(agent_idx.size(0)) / static_cast<double>(na_all),
+                            &u);
+        timing->disc += Since(t_phase);
       }
       t_phase = Clock::now();
-      if (m.use_amp) m.StartReduce(disc_params, &m.disc_grads);
-      m.FinishReduce(ac_params, disc_params);
+      if (use_amp) StartReduce(disc_params, &disc_grads);
+      FinishReduce(ac_params, disc_params);
       if (ppo.grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, ppo.grad_norm);
-      m.optim->step();
-      ppo_s += Since(t_phase);
-      ++steps;
+      optim->step();
+      timing->ppo += Since(t_phase);
+      ++u.steps;
     }
   }
+  return u;
+}
+
+IterationStats Trainer::RunIteration() {
+  auto& m = *impl_;
+  const int64_t T = m.cfg.ppo.horizon, N = m.n;
+  IterationStats st;
+  const auto t_iter = Clock::now();
+  Impl::Rollout roll = m.CollectRollout();
+  m.samples += T * N * m.world;
+  Impl::Timings timing;
+  const Impl::Batch batch = m.PrepareBatch(&timing);
+  const auto t_update = Clock::now();
+  Impl::UpdateTotals u = m.Update(batch, &timing);
   st.update_seconds = Since(t_update);
 
   // ---- buffers and normalisers for the next iteration ---------------------------------------
   if (m.use_amp) {
-    m.replay->Add(amp_flat, style_flat, ampc.replay_keep_prob, m.amp_rng);
-    m.UpdateNorm(m.amp_norm, amp_flat);
+    m.replay->Add(batch.amp, batch.styles, m.cfg.amp.replay_keep_prob, m.amp_rng);
+    m.UpdateNorm(m.amp_norm, batch.amp);
   }
-  m.UpdateNorm(m.obs_norm, obs_f);
+  m.UpdateNorm(m.obs_norm, batch.obs);
   ++m.iteration;
 
   // ---- statistics -------------------------------------------------------------------------
   // Sums over all ranks, so every rank (and rank 0's log) reports the whole run's figures.
-  double sums[] = {ret_sum,
-                   len_sum,
-                   succ_sum,
-                   fall_sum,
-                   static_cast<double>(episodes),
+  double sums[] = {roll.return_sum,
+                   roll.length_sum,
+                   roll.success_sum,
+                   roll.fall_sum,
+                   static_cast<double>(roll.episodes),
                    m.rew_buf.sum().item<double>(),
-                   style_rew.sum().item<double>(),
-                   reward.sum().item<double>(),
-                   a_loss,
-                   c_loss,
-                   b_loss,
-                   d_loss,
-                   gp,
-                   acc_d,
-                   acc_a,
-                   clipf};
+                   batch.style_reward.sum().item<double>(),
+                   batch.reward.sum().item<double>(),
+                   u.actor,
+                   u.critic,
+                   u.bounds,
+                   u.disc,
+                   u.grad_penalty,
+                   u.demo_accuracy,
+                   u.agent_accuracy,
+                   u.clip_fraction};
   if (m.comm) m.comm->AllReduceSum(sums, static_cast<int64_t>(std::size(sums)));
-  std::tie(ret_sum, len_sum, succ_sum, fall_sum) =
-      std::make_tuple(sums[0], sums[1], sums[2], sums[3]);
-  episodes = static_cast<int64_t>(sums[4]);
-  std::tie(a_loss, c_loss, b_loss, d_loss, gp, acc_d, acc_a, clipf) =
-      std::make_tuple(sums[8], sums[9], sums[10], sums[11], sums[12], sums[13], sums[14], sums[15]);
-  const double batch = static_cast<double>(T * N * m.world);
+  const double episodes = sums[4];
+  const double batch_size = static_cast<double>(T * N * m.world);
   if (m.comm && m.iteration % m.check_every == 0) m.CheckParametersAgree();
-  const double s = std::max<int64_t>(steps, 1);
+  const double s = std::max<int64_t>(u.steps, 1);
   st.iteration = m.iteration;
   st.samples = m.samples;
-  st.task_reward = sums[5] / batch;
-  st.style_reward = sums[6] / batch;
-  st.total_reward = sums[7] / batch;
-  st.episodes = episodes;
-  st.episode_return = episodes ? ret_sum / episodes : std::nan("");
-  st.episode_length = episodes ? len_sum / episodes : std::nan("");
-  st.success_rate = episodes ? succ_sum / episodes : std::nan("");
-  st.fall_rate = episodes ? fall_sum / episodes : std::nan("");
-  st.actor_loss = a_loss / s;
-  st.critic_loss = c_loss / s;
-  st.bounds_loss = b_loss / s;
-  st.disc_loss = d_loss / s;
-  st.grad_penalty = gp / s;
-  st.disc_acc_demo = acc_d / s;
-  st.disc_acc_agent = acc_a / s;
-  st.clip_fraction = clipf / s;
-  st.env_samples_per_s = static_cast<double>(T * N) / collect_s;
-  const int64_t mb_rank = mb / m.world;  // this rank's FLOPs and samples
-  st.train_samples_per_s = static_cast<double>(steps * mb_rank) / std::max(st.update_seconds, 1e-9);
+  st.task_reward = sums[5] / batch_size;
+  st.style_reward = sums[6] / batch_size;
+  st.total_reward = sums[7] / batch_size;
+  st.episodes = static_cast<int64_t>(episodes);
+  st.episode_return = episodes > 0 ? sums[0] / episodes : std::nan("");
+  st.episode_length = episodes > 0 ? sums[1] / episodes : std::nan("");
+  st.success_rate = episodes > 0 ? sums[2] / episodes : std::nan("");
+  st.fall_rate = episodes > 0 ? sums[3] / episodes : std::nan("");
+  st.actor_loss = sums[8] / s;
+  st.critic_loss = sums[9] / s;
+  st.bounds_loss = sums[10] / s;
+  st.disc_loss = sums[11] / s;
+  st.grad_penalty = sums[12] / s;
+  st.disc_acc_demo = sums[13] / s;
+  st.disc_acc_agent = sums[14] / s;
+  st.clip_fraction = sums[15] / s;
+  st.env_samples_per_s = static_cast<double>(T * N) / roll.seconds;
+  const int64_t mb_rank = u.minibatch / m.world;  // this rank's FLOPs and samples
+  st.train_samples_per_s =
+      static_cast<double>(u.steps * mb_rank) / std::max(st.update_seconds, 1e-9);
   // Forward + backward ≈ 3 × 2 × MACs per sample for each network (the discriminator also
   // pays a double-backward for the gradient penalty on its demo half, ≈ 2× more).
-  const double ac_flop = 6.0 * LinearMacs(*m.ac) * static_cast<double>(steps * mb_rank);
+  const double ac_flop = 6.0 * LinearMacs(*m.ac) * static_cast<double>(u.steps * mb_rank);
   const double disc_flop =
-      m.use_amp ? 6.0 * LinearMacs(*m.disc) * static_cast<double>(disc_samples) * 1.5 : 0.0;
+      m.use_amp ? 6.0 * LinearMacs(*m.disc) * static_cast<double>(u.disc_samples) * 1.5 : 0.0;
   st.update_gflop = (ac_flop + disc_flop) * 1e-9;
-  st.env_seconds = env_s;
-  st.inference_seconds = collect_s - env_s;
-  st.disc_seconds = disc_s;
-  st.ppo_seconds = ppo_s;
+  st.env_seconds = roll.env_seconds;
+  st.inference_seconds = roll.seconds - roll.env_seconds;
+  st.disc_seconds = timing.disc;
+  st.ppo_seconds = timing.ppo;
   st.iteration_seconds = Since(t_iter);
   return st;
 }

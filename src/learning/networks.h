@@ -1,6 +1,7 @@
 // Networks of the learner (libtorch): running normalisers, the observation encoder that routes
 // heightmaps through their own MLP and keeps the style embedding z un-normalised, the Gaussian
 // actor with fixed log σ, the critic and the (conditional) discriminator.
+// Private to src/learning (and its tests): torch types never appear in public headers.
 #pragma once
 
 #include <string>

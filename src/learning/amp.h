@@ -1,12 +1,13 @@
 // AMP pieces: discriminator loss (BCE or LSGAN + gradient penalty + logit and weight
 // regularisation), the style reward and the replay buffer of policy AMP observations.
+// Private to src/learning (and its tests): torch types never appear in public headers.
 #pragma once
 
 #include <torch/torch.h>
 
 #include "sims/core/rng.h"
 #include "sims/learning/config.h"
-#include "sims/learning/networks.h"
+#include "learning/networks.h"
 
 namespace sims::learning {
 

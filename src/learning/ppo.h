@@ -1,4 +1,5 @@
 // PPO pieces as pure tensor functions (unit-tested against hand-computed values).
+// Private to src/learning (and its tests): torch types never appear in public headers.
 #pragma once
 
 #include <torch/torch.h>
