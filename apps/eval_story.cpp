@@ -6,6 +6,7 @@
 
 #include "sims/core/app.h"
 #include "sims/core/config.h"
+#include "sims/core/environment.h"
 #include "sims/core/paths.h"
 #include "sims/eval/story_eval.h"
 
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   return sims::RunApp(flags, [&] {
     o.policies = policies;
     o.themes = themes;
+    o.environment = sims::InstalledEnvironment();  // $SIMS_LLM_* for planning the themes
     if (!reference.empty() && std::filesystem::exists(reference)) o.reference_manifest = reference;
     const auto r = sims::eval::EvaluateStories(o);
     if (!out.empty()) sims::WriteJsonFile(out, r);

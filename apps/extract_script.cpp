@@ -2,12 +2,12 @@
 // endpoint → validated SIMS short script (+ the frames it used), ready for plan_story --db.
 #include <unistd.h>
 
-#include <cstdlib>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 #include "sims/core/app.h"
+#include "sims/core/environment.h"
 #include "sims/io/video_frames.h"
 #include "sims/planner/video_script.h"
 
@@ -21,12 +21,6 @@ struct ScratchDir {
     std::filesystem::remove_all(path, ec);
   }
 };
-
-std::string EnvKey() {
-  for (const char* name : {"SIMS_LLM_API_KEY", "OPENAI_API_KEY"})
-    if (const char* v = std::getenv(name)) return v;
-  return "";
-}
 
 }  // namespace
 
@@ -57,7 +51,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {
     options.unknown = sims::planner::ParseUnknownTerms(unknown, "--unknown");
-    if (options.api_key.empty()) options.api_key = EnvKey();
+    if (options.api_key.empty()) options.api_key = sims::InstalledEnvironment().LlmApiKey();
     options.video = std::filesystem::path(video).filename().string();
     if (!dry_run && options.endpoint.empty())
       sims::ThrowInputError("extract_script", "--vlm-endpoint",

@@ -1,11 +1,11 @@
 // imitate_scripts: N new short scripts in the style of the database (an OpenAI-compatible LLM
 // with few-shot examples, or the offline template imitation), one validated JSON file each.
-#include <cstdlib>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 #include "sims/core/app.h"
+#include "sims/core/environment.h"
 #include "sims/planner/imitation.h"
 
 int main(int argc, char** argv) {
@@ -37,9 +37,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {
     options.unknown = sims::planner::ParseUnknownTerms(unknown, "--unknown");
-    if (options.api_key.empty())
-      for (const char* name : {"SIMS_LLM_API_KEY", "OPENAI_API_KEY"})
-        if (const char* v = std::getenv(name); v && options.api_key.empty()) options.api_key = v;
+    if (options.api_key.empty()) options.api_key = sims::InstalledEnvironment().LlmApiKey();
     std::vector<std::filesystem::path> extra_paths(extras.begin(), extras.end());
     auto db = sims::planner::ScriptDatabase::LoadWithExtras({}, extra_paths);
     auto result = sims::planner::ImitateScripts(db, options);

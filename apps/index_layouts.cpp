@@ -1,11 +1,11 @@
 // index_layouts: builds the layout database (scene graphs of built-in rooms and house, the MORSE
 // apartment and 3D-FRONT houses) that plan_story retrieves layouts from.
-#include <cstdlib>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 #include "sims/core/app.h"
+#include "sims/core/environment.h"
 #include "sims/core/error.h"
 #include "sims/planner/planner.h"
 
@@ -24,8 +24,7 @@ int main(int argc, char** argv) {
   sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {
-    if (future_dir.empty() && std::getenv("SIMS_FUTURE_DIR"))
-      future_dir = std::getenv("SIMS_FUTURE_DIR");
+    if (future_dir.empty()) future_dir = sims::InstalledEnvironment().future_dir.string();
     sims::planner::PlannerConfig cfg = sims::planner::LoadPlannerConfig(config);
     std::vector<std::filesystem::path> dirs(front3d.begin(), front3d.end());
     std::vector<std::string> log;

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "sims/core/app.h"
+#include "sims/core/environment.h"
 #include "sims/planner/planner.h"
 
 int main(int argc, char** argv) {
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {
+    r.environment = sims::InstalledEnvironment();  // $SIMS_LLM_* where config and flags are silent
     sims::planner::Plan plan = sims::planner::PlanStory(r);
     sims::planner::SavePlan(out, plan);
     std::cout << sims::planner::DescribePlan(plan) << "wrote " << out << "\n";

@@ -6,6 +6,7 @@
 
 #include "sims/core/app.h"
 #include "sims/core/config.h"
+#include "sims/core/environment.h"
 #include "sims/fsm/story_job.h"
 
 int main(int argc, char** argv) {
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
       job.options = sims::LoadConfig<sims::fsm::StoryOptions>(options_file);
     if (seed) job.options.seed = *seed;
     job.out_dir = out;
+    job.environment = sims::InstalledEnvironment();  // $SIMS_LLM_* for --theme
     if (!goal.empty()) job.goal = Eigen::Vector3d(goal[0], goal[1], goal[2]);
     sims::fsm::RunStoryJob(job);
     return 0;

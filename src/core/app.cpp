@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "sims/core/environment.h"
 #include "sims/core/log.h"
 #include "sims/core/parallel.h"
 
@@ -16,7 +17,15 @@ void AddAppFlags(CLI::App* app, AppFlags* flags) {
 
 int RunApp(const AppFlags& flags, const std::function<int()>& body) {
   try {
-    InitLogging(flags.log_level.empty() ? flags.default_log_level : flags.log_level);
+    // The only place the apps read the process environment; everything below gets it from the
+    // installed settings or from option fields the app fills.
+    InstallEnvironment(ReadEnvironment());
+    if (!flags.log_level.empty())
+      InitLogging(flags.log_level, "--log-level");
+    else if (!flags.default_log_level.empty())
+      InitLogging(flags.default_log_level, "--log-level");
+    else
+      InitLogging(InstalledEnvironment().log_level, "SIMS_LOG_LEVEL");
     SetThreadCount(flags.threads);
     return body();
   } catch (const std::exception& e) {

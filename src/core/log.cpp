@@ -1,23 +1,16 @@
 #include "sims/core/log.h"
 
-#include <cstdlib>
-
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 #include "sims/core/error.h"
 
 namespace sims {
 
-void InitLogging(const std::string& level) {
-  std::string name = level;
-  if (name.empty()) {
-    const char* env = std::getenv("SIMS_LOG_LEVEL");
-    name = env ? env : "info";
-  }
+void InitLogging(const std::string& level, const std::string& source) {
+  const std::string name = level.empty() ? "info" : level;
   const auto lvl = spdlog::level::from_str(name);
   if (lvl == spdlog::level::off && name != "off")
-    ThrowInputError(level.empty() ? "SIMS_LOG_LEVEL" : "--log-level", "",
-                    "one of trace, debug, info, warn, error, critical, off", name);
+    ThrowInputError(source, "", "one of trace, debug, info, warn, error, critical, off", name);
   static bool initialised = false;
   if (!initialised) {
     // Logs go to stderr so stdout stays clean for --json outputs.

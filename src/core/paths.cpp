@@ -1,12 +1,12 @@
 #include "sims/core/paths.h"
 
-#include <cstdlib>
+#include "sims/core/environment.h"
 
 namespace sims {
 
 std::filesystem::path ProjectRoot() {
-  if (const char* env = std::getenv("SIMS_ROOT"); env && *env) return env;
-  return SIMS_SOURCE_ROOT;
+  const std::filesystem::path& root = InstalledEnvironment().root;
+  return root.empty() ? std::filesystem::path(SIMS_SOURCE_ROOT) : root;
 }
 
 std::filesystem::path AssetPath(const std::string& relative) {
@@ -18,9 +18,8 @@ std::filesystem::path ConfigPath(const std::string& relative) {
 }
 
 std::filesystem::path DataPath(const std::string& relative) {
-  if (const char* env = std::getenv("SIMS_DATA_DIR"); env && *env)
-    return std::filesystem::path(env) / relative;
-  return ProjectRoot() / "data" / relative;
+  const std::filesystem::path& data = InstalledEnvironment().data_dir;
+  return (data.empty() ? ProjectRoot() / "data" : data) / relative;
 }
 
 }  // namespace sims

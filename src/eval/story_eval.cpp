@@ -67,6 +67,7 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       try {
         planner::PlanRequest req;
         req.theme = theme;
+        req.environment = o.environment;
         req.difficulty = difficulty;
         req.seed = o.seed + i;
         const planner::Plan plan = planner::PlanStory(req);

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <fstream>
+#include <utility>
 
 #include "sims/core/error.h"
 #include "sims/core/log.h"
@@ -82,7 +83,9 @@ nlohmann::json RunStoryJob(const StoryJob& job) {
   const PolicySet policies = LoadPolicySet(policy_path);
 
   // ---- plan ------------------------------------------------------------------------------
-  planner::StoryPlanner planner;
+  planner::PlannerConfig planner_config = planner::LoadPlannerConfig();
+  planner_config.llm = planner::WithEnvironment(std::move(planner_config.llm), job.environment);
+  planner::StoryPlanner planner(std::move(planner_config));
   planner::Plan plan;
   std::shared_ptr<scene::Scene> story_scene;
   std::vector<Instruction> instructions;

@@ -2,10 +2,10 @@
 
 #include <unistd.h>
 
-#include <cstdlib>
 #include <fstream>
 
 #include "sims/core/config.h"
+#include "sims/core/environment.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
 #include "sims/io/subprocess.h"
@@ -63,11 +63,11 @@ void InstallThree(const std::filesystem::path& dir, const std::filesystem::path&
 
 std::filesystem::path FindThreeArchive() {
   namespace fs = std::filesystem;
-  if (const char* env = std::getenv("SIMS_THREE_TGZ"); env && *env) {
-    if (!fs::exists(env))
+  if (const fs::path& given = InstalledEnvironment().three_tgz; !given.empty()) {
+    if (!fs::exists(given))
       ThrowInputError("$SIMS_THREE_TGZ", "", "the path of three-*.tgz",
-                      std::string(env) + " (missing)");
-    return env;
+                      given.string() + " (missing)");
+    return given;
   }
   const fs::path want = DataPath(std::string("npm/three-") + kThreeVersion + ".tgz");
   if (fs::exists(want)) return want;

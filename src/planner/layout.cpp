@@ -10,11 +10,8 @@
 
 #include "sims/core/error.h"
 #include "sims/planner/text.h"
-
-#if SIMS_PLANNER_WITH_SCENE
 #include "sims/scene/builtin.h"
 #include "sims/scene/loaders.h"
-#endif
 
 namespace sims::planner {
 
@@ -638,7 +635,6 @@ void Translate(scene::Object* o, const Eigen::Vector3d& d) {
 
 SceneLoader DefaultSceneLoader() {
   return [](const LayoutSource& s) -> scene::Scene {
-#if SIMS_PLANNER_WITH_SCENE
     if (s.kind == "builtin_room") return scene::BuiltinScene(s.name);
     if (s.kind == "builtin_house") return scene::BuiltinHouse();
     if (s.kind == "morse") return scene::LoadMorseApartment();
@@ -648,10 +644,6 @@ SceneLoader DefaultSceneLoader() {
                     "builtin_room, builtin_house, morse, front3d or scene_file ('given' scenes are "
                     "passed in by the caller)",
                     s.kind);
-#else
-    ThrowInputError("layout source '" + s.name + "'", "kind",
-                    "a loadable source, but this build has no scene module", s.kind);
-#endif
   };
 }
 
@@ -724,7 +716,6 @@ LayoutDatabase BuildLayoutDatabase(bool builtin, bool morse,
       db.layouts.push_back(std::move(e));
     }
   };
-#if SIMS_PLANNER_WITH_SCENE
   if (builtin) {
     for (const scene::Scene& s : scene::BuiltinRooms()) {
       LayoutSource src;
@@ -771,14 +762,6 @@ LayoutDatabase BuildLayoutDatabase(bool builtin, bool morse,
       }
     }
   }
-#else
-  (void)builtin;
-  (void)morse;
-  (void)front3d_dirs;
-  (void)future_dir;
-  (void)add;
-  ThrowInputError("index_layouts", "", "a build with the scene module (scene loaders)", "none");
-#endif
   return db;
 }
 

@@ -18,13 +18,6 @@
 
 namespace sims::planner {
 
-namespace {
-std::string Env(const char* name) {
-  const char* v = std::getenv(name);
-  return v ? std::string(v) : std::string();
-}
-}  // namespace
-
 void LlmConfig::Validate() const {
   Require(timeout_s > 0, "timeout_s", "a positive number of seconds");
   Require(max_tokens > 0, "max_tokens", "a positive integer");
@@ -32,22 +25,12 @@ void LlmConfig::Validate() const {
   Require(temperature >= 0, "temperature", "a non-negative number");
 }
 
-std::string LlmConfig::ResolvedEndpoint() const {
-  return endpoint.empty() ? Env("SIMS_LLM_ENDPOINT") : endpoint;
-}
-
-std::string LlmConfig::ResolvedModel() const {
-  std::string env = Env("SIMS_LLM_MODEL");
-  return model == "default" && !env.empty() ? env : model;
-}
-
-std::string LlmConfig::ResolvedApiKey() const {
-  if (!api_key.empty()) return api_key;
-  if (!api_key_env.empty()) {
-    std::string k = Env(api_key_env.c_str());
-    if (!k.empty()) return k;
-  }
-  return Env("OPENAI_API_KEY");
+LlmConfig WithEnvironment(LlmConfig config, const Environment& environment) {
+  if (config.endpoint.empty()) config.endpoint = environment.llm_endpoint;
+  if (config.model == "default" && !environment.llm_model.empty())
+    config.model = environment.llm_model;
+  if (config.api_key.empty()) config.api_key = environment.LlmApiKey(config.api_key_env);
+  return config;
 }
 
 HttpUrl ParseHttpUrl(const std::string& url) {
@@ -344,12 +327,10 @@ std::string PostChatRequest(const std::string& endpoint, const std::string& api_
 
 std::string ChatCompletion(const LlmConfig& config, const std::vector<ChatMessage>& messages,
                            uint64_t seed) {
-  std::string endpoint = config.ResolvedEndpoint();
-  if (endpoint.empty()) throw LlmError(LlmError::Kind::kConfig, "no LLM endpoint configured");
-  LlmConfig resolved = config;
-  resolved.model = config.ResolvedModel();
-  return PostChatRequest(endpoint, config.ResolvedApiKey(),
-                         ChatRequestJson(resolved, messages, seed), config.timeout_s);
+  if (config.endpoint.empty())
+    throw LlmError(LlmError::Kind::kConfig, "no LLM endpoint configured");
+  return PostChatRequest(config.endpoint, config.api_key, ChatRequestJson(config, messages, seed),
+                         config.timeout_s);
 }
 
 std::string StripToJson(const std::string& reply) {

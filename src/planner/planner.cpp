@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -42,7 +43,7 @@ ScriptResult StoryPlanner::EmbeddedScript(const std::string& theme, Difficulty d
 
 ScriptResult StoryPlanner::ScriptForTheme(const std::string& theme, Difficulty difficulty,
                                           uint64_t seed) const {
-  if (config_.llm.ResolvedEndpoint().empty()) {
+  if (config_.llm.endpoint.empty()) {
     ScriptResult r = EmbeddedScript(theme, difficulty, seed);
     r.note =
         "no LLM endpoint configured (--llm-endpoint or $SIMS_LLM_ENDPOINT): used the "
@@ -164,7 +165,7 @@ ScriptResult StoryPlanner::LlmScript(const std::string& theme, Difficulty diffic
   r.script.seed = seed;
   r.script.arc = lexicon_->Arc(theme);
   if (r.script.narrative.empty()) r.script.narrative = TemplateNarrative(r.script, {}, *vocab_);
-  r.planner = "llm:" + config_.llm.ResolvedModel();
+  r.planner = "llm:" + config_.llm.model;
   return r;
 }
 
@@ -263,6 +264,7 @@ Plan PlanStory(const PlanRequest& req, TextEmbedder embedder) {
   if (!req.llm_model.empty()) config.llm.model = req.llm_model;
   if (!req.llm_key.empty()) config.llm.api_key = req.llm_key;
   if (req.llm_timeout_s > 0) config.llm.timeout_s = req.llm_timeout_s;
+  config.llm = WithEnvironment(std::move(config.llm), req.environment);
   config.extra_scripts.insert(config.extra_scripts.end(), req.extra_scripts.begin(),
                               req.extra_scripts.end());
   StoryPlanner planner(config, std::move(embedder));

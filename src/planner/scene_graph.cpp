@@ -8,10 +8,7 @@
 #include <set>
 
 #include "sims/planner/text.h"
-
-#if SIMS_PLANNER_WITH_SCENE
 #include "sims/scene/ray_caster.h"
-#endif
 
 namespace sims::planner {
 
@@ -89,25 +86,6 @@ bool SegmentBox(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const scene:
   return true;
 }
 
-// Möller–Trumbore restricted to the open segment (0, 1).
-[[maybe_unused]] bool SegmentTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
-                                      const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                      const Eigen::Vector3d& c) {
-  Eigen::Vector3d d = q - p, e1 = b - a, e2 = c - a;
-  Eigen::Vector3d h = d.cross(e2);
-  double det = e1.dot(h);
-  if (std::abs(det) < 1e-12) return false;
-  double inv = 1.0 / det;
-  Eigen::Vector3d s = p - a;
-  double u = inv * s.dot(h);
-  if (u < 0 || u > 1) return false;
-  Eigen::Vector3d qv = s.cross(e1);
-  double v = inv * d.dot(qv);
-  if (v < 0 || u + v > 1) return false;
-  double t = inv * e2.dot(qv);
-  return t > 1e-6 && t < 1 - 1e-6;
-}
-
 double FootprintGap(const scene::Aabb& a, const scene::Aabb& b) {
   double dx = std::max({0.0, a.min.x() - b.max.x(), b.min.x() - a.max.x()});
   double dy = std::max({0.0, a.min.y() - b.max.y(), b.min.y() - a.max.y()});
@@ -117,28 +95,10 @@ double FootprintGap(const scene::Aabb& a, const scene::Aabb& b) {
 }  // namespace
 
 LineOfSight DefaultLineOfSight(const scene::Scene& scene) {
-#if SIMS_PLANNER_WITH_SCENE
   auto caster = std::make_shared<scene::RayCaster>(scene);
   return [caster](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
     return !caster->Occluded(a, b);
   };
-#else
-  // Without the scene module: walls exactly, furniture by bounding box.
-  auto walls = std::make_shared<scene::TriangleMesh>(scene.walls);
-  auto boxes = std::make_shared<std::vector<scene::Aabb>>();
-  for (const scene::Object& o : scene.objects) boxes->push_back(ObjectBounds(o));
-  return [walls, boxes](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    for (const Eigen::Vector3i& t : walls->triangles)
-      if (SegmentTriangle(a, b, walls->vertices[t[0]], walls->vertices[t[1]],
-                          walls->vertices[t[2]]))
-        return false;
-    for (const scene::Aabb& box : *boxes) {
-      double t0, t1;
-      if (SegmentBox(a, b, box, &t0, &t1) && t1 > 1e-6 && t0 < 1 - 1e-6) return false;
-    }
-    return true;
-  };
-#endif
 }
 
 SceneGraph BuildSceneGraph(const scene::Scene& scene, const SceneGraphConfig& config,

@@ -1,8 +1,8 @@
 // Generic Assimp scenes and the MORSE data.
-#include <cstdlib>
 #include <functional>
 
 #include "scene/loader_util.h"
+#include "sims/core/environment.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
 #include "sims/scene/loaders.h"
@@ -175,8 +175,8 @@ TriangleMesh LoadTriangleMesh(const std::filesystem::path& path, const MeshLoadO
 }
 
 std::filesystem::path MorseDataDir() {
-  if (const char* env = std::getenv("SIMS_MORSE_DIR"); env && *env) return env;
-  return "/usr/share/morse/data";
+  const std::filesystem::path& dir = InstalledEnvironment().morse_dir;
+  return dir.empty() ? std::filesystem::path("/usr/share/morse/data") : dir;
 }
 
 Scene LoadMorseScene(const std::filesystem::path& blend_path) {

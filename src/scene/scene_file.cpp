@@ -1,7 +1,6 @@
 // LoadSceneFile: one entry point that picks the loader by extension and content.
-#include <cstdlib>
-
 #include "scene/loader_util.h"
+#include "sims/core/environment.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
 #include "sims/scene/builtin.h"
@@ -11,9 +10,9 @@ namespace sims::scene {
 
 namespace {
 
-std::filesystem::path EnvOr(const char* var, const std::filesystem::path& fallback) {
-  if (const char* v = std::getenv(var); v && *v) return v;
-  return fallback;
+std::filesystem::path Or(const std::filesystem::path& setting,
+                         const std::filesystem::path& fallback) {
+  return setting.empty() ? fallback : setting;
 }
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
@@ -30,7 +29,7 @@ ScenePlanRef ParseScenePlanRef(const std::string& ref) {
 }
 
 std::filesystem::path DefaultPartNetRoot() {
-  return EnvOr("SIMS_PARTNET_DIR", DataPath("partnet"));
+  return Or(InstalledEnvironment().partnet_dir, DataPath("partnet"));
 }
 
 Scene LoadSceneFile(const std::string& spec) {
@@ -56,8 +55,8 @@ Scene LoadSceneFile(const std::string& spec) {
   if (ext == ".json") {
     const nlohmann::json j = internal::ReadJson(path);
     if (j.is_object() && j.contains("furniture") && j.contains("scene")) {
-      const fs::path future =
-          EnvOr("SIMS_FUTURE_DIR", path.parent_path().parent_path() / "3D-FUTURE-model");
+      const fs::path future = Or(InstalledEnvironment().future_dir,
+                                 path.parent_path().parent_path() / "3D-FUTURE-model");
       return LoadFront3D(path, future);
     }
     if (j.is_object() && !j.empty() && j.begin()->is_object() && j.begin()->contains("obj"))

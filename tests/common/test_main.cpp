@@ -3,10 +3,12 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include "sims/core/environment.h"
 #include "sims/core/log.h"
 
 namespace sims::testing {
@@ -27,7 +29,10 @@ void OnMujocoError(const char* msg) {
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  sims::InitLogging(std::getenv("SIMS_LOG_LEVEL") ? "" : "warn");
+  // As RunApp does for the apps: the environment is read here, once, and installed.
+  sims::InstallEnvironment(sims::ReadEnvironment());
+  const std::string& level = sims::InstalledEnvironment().log_level;
+  sims::InitLogging(level.empty() ? "warn" : level, "SIMS_LOG_LEVEL");
   mju_user_warning = OnMujocoWarning;
   mju_user_error = OnMujocoError;
   return RUN_ALL_TESTS();

@@ -149,6 +149,7 @@ MotionTextTrainConfig TinyTrain(const fs::path& out) {
   c.model = TinyModel();
   c.out_dir = out.string();
   c.steps = 12;
+  c.align_weight = 1.0;  // the weight these expectations were written with (default 0.1)
   c.batch_size = 4;
   c.log_every = 3;
   c.checkpoint_every = 6;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/test_util.h"
+#include "sims/core/environment.h"
 #include "sims/core/error.h"
 #include "sims/scene/builtin.h"
 
@@ -143,14 +144,12 @@ TEST(MorseLoaderTest, FurniturePropsAndBadDataDir) {
   for (const auto& o : s.objects) categorised += o.category != "object";
   EXPECT_GE(categorised, 25);
   EXPECT_FALSE(s.ObjectsOfCategory("wardrobe").empty());
-  const char* old = std::getenv("SIMS_MORSE_DIR");
-  const std::string saved = old ? old : "";
-  setenv("SIMS_MORSE_DIR", "/nonexistent/morse", 1);
+  const Environment saved = InstalledEnvironment();
+  Environment moved = saved;
+  moved.morse_dir = "/nonexistent/morse";
+  InstallEnvironment(moved);
   ExpectError([] { LoadMorseApartment(); }, {"apartment.blend", "morse-simulator-data"});
-  if (old)
-    setenv("SIMS_MORSE_DIR", saved.c_str(), 1);
-  else
-    unsetenv("SIMS_MORSE_DIR");
+  InstallEnvironment(saved);
 }
 
 // ---------------------------------------------------------------- 3D-FRONT
@@ -391,10 +390,13 @@ TEST(SceneFileTest, DispatchesByExtensionAndContent) {
   EXPECT_EQ(LoadSceneFile(TestData("scene/scannet/scene0000_00").string()).name, "scene0000_00");
   EXPECT_EQ(LoadSceneFile(TestData("scene/front3d/3D-FRONT/house.json").string()).objects.size(),
             2u);
-  setenv("SIMS_PARTNET_DIR", TestData("scene/partnet").c_str(), 1);
+  const Environment saved = InstalledEnvironment();
+  Environment partnet = saved;
+  partnet.partnet_dir = TestData("scene/partnet");
+  InstallEnvironment(partnet);
   EXPECT_EQ(LoadSceneFile(TestData("scene/sceneplan.json").string() + "#0001").name,
             "sceneplan#0001");
-  unsetenv("SIMS_PARTNET_DIR");
+  InstallEnvironment(saved);
   EXPECT_EQ(LoadSceneFile(TestData("scene/two_objects.obj").string()).objects.size(), 2u);
   ExpectError([] { LoadSceneFile("castle"); }, {"castle", "house"});
   ExpectError([] { LoadSceneFile("/no/such/scene.glb"); }, {"/no/such/scene.glb", "no such file"});

@@ -60,7 +60,7 @@ TEST_F(HumanoidTest, PdMappingAtLimits) {
   humanoid_.ActionToTargets(plus, tp);
   humanoid_.ActionToTargets(minus, tm);
   humanoid_.ActionToTargets(beyond, tb);
-  // REFERENCE_FACTS §4: abdomen 108°, neck 72°, shoulder 180°, hip 168°, ankle 66°,
+  // ASE's PD action ranges: abdomen 108°, neck 72°, shoulder 180°, hip 168°, ankle 66°,
   // elbow −80° ± 112°, knee +80° ± 112°.
   EXPECT_NEAR(tp[0], 108 * kDeg, 1e-9);
   EXPECT_NEAR(tm[0], -108 * kDeg, 1e-9);

@@ -20,8 +20,9 @@ struct AppFlags {
 /// Adds --threads and --log-level to `app`, bound to `flags`.
 void AddAppFlags(CLI::App* app, AppFlags* flags);
 
-/// Sets logging and threads from `flags`, then runs `body`; returns its exit code, or 1 after
-/// logging the message of any exception it throws.
+/// Reads the process environment once and installs it (InstallEnvironment; the app's body gets
+/// it from InstalledEnvironment()), sets logging and threads from `flags`, then runs `body`;
+/// returns its exit code, or 1 after logging the message of any exception it throws.
 int RunApp(const AppFlags& flags, const std::function<int()>& body);
 
 }  // namespace sims

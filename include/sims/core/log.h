@@ -1,4 +1,5 @@
-// Logging through spdlog; the level comes from a flag or the SIMS_LOG_LEVEL environment variable.
+// Logging through spdlog; the level comes from a flag or, in the apps, $SIMS_LOG_LEVEL (read by
+// RunApp, not here).
 #pragma once
 
 #include <string>
@@ -7,8 +8,9 @@
 
 namespace sims {
 
-/// Sets the global level: `level` if non-empty, else $SIMS_LOG_LEVEL, else "info".
-/// Accepts trace, debug, info, warn, error, critical, off; throws sims::Error otherwise.
-void InitLogging(const std::string& level = "");
+/// Sets the global level: `level`, or "info" when empty. Accepts trace, debug, info, warn,
+/// error, critical, off; otherwise throws sims::Error naming `source` (the flag or variable
+/// the level came from).
+void InitLogging(const std::string& level = "", const std::string& source = "--log-level");
 
 }  // namespace sims

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sims/core/environment.h"
 #include "sims/fsm/story_runner.h"
 
 namespace sims::eval {
@@ -23,6 +24,9 @@ struct StoryEvalOptions {
   int stories_per_difficulty = 5;                                     ///< N.
   uint64_t seed = 0;                                                  ///< Story i uses seed + i.
   fsm::StoryOptions story;  ///< FSM settings; missing skill policies count as failures.
+  /// LLM fall-backs for planning the themes (planner::PlanRequest::environment); eval_story
+  /// passes InstalledEnvironment(), the default fills nothing.
+  Environment environment;
 };
 
 /// Runs the protocol; returns per-difficulty and overall metrics plus per-story rows.

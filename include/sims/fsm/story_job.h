@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "sims/core/environment.h"
 #include "sims/fsm/story_runner.h"
 
 namespace sims::fsm {
@@ -31,6 +32,10 @@ struct StoryJob {
   std::string style_model;  ///< Motion–text model for caption → z ("" = data/language/text_motion
                             ///< if present).
   StoryOptions options;  ///< FSM settings (seed included).
+  /// Fills the LLM settings configs/planner/planner.json leaves open (--theme; see
+  /// planner::WithEnvironment): run_story passes InstalledEnvironment(), the default fills
+  /// nothing.
+  Environment environment;
 };
 
 /// Turns a sentence into a one-interaction long-script JSON (skill and furniture found by the

@@ -17,8 +17,9 @@ struct ViewerOptions {
   std::filesystem::path three_archive;  ///< three-*.tgz ("" = FindThreeArchive()).
 };
 
-/// $SIMS_THREE_TGZ, else DataPath("npm/three-<kThreeVersion>.tgz"), else another
-/// DataPath("npm/three-*.tgz"); throws sims::Error telling to run cmake/setup.sh if none.
+/// The installed Environment's three_tgz ($SIMS_THREE_TGZ in the apps), else
+/// DataPath("npm/three-<kThreeVersion>.tgz"), else another DataPath("npm/three-*.tgz"); throws
+/// sims::Error telling to run cmake/setup.sh if none.
 std::filesystem::path FindThreeArchive();
 
 /// Writes DIR/three/ (unpacked once per three version), DIR/viewer.js and DIR/index.html, each

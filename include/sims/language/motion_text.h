@@ -137,13 +137,13 @@ struct MotionTextTrainConfig {
   TextEncoderConfig text_encoder;            ///< Frozen text encoder.
   std::string data_dir;                      ///< Dataset folder (format above).
   std::string out_dir = "runs/text_motion";  ///< Outputs and checkpoints.
-  int steps = 3000;                          ///< Optimiser steps.
+  int steps = 5000;                          ///< Steps (and align_weight: docs/language.md).
   int batch_size = 32;                       ///< Windows per step.
   double learning_rate = 5e-4;               ///< AdamW learning rate.
   double weight_decay = 1e-4;                ///< AdamW weight decay.
   double grad_clip = 1.0;                    ///< Gradient-norm clip (0 = off).
   double recon_weight = 1.0;                 ///< Weight of the motion reconstruction MSE.
-  double align_weight = 1.0;                 ///< Weight of 1 − cos(z, MLP_d(t)).
+  double align_weight = 0.1;                 ///< Weight of 1 − cos(z, MLP_d(t)).
   double text_recon_weight = 1.0;            ///< Weight of ‖MLP_u(MLP_d(t)) − t‖.
   /// Weight of a uniformity term log mean exp(−2‖z_i − z_j‖²) over the batch (Wang & Isola 2020,
   /// as CALM uses for its encoder). Not in SIMS eq. 3–5 (set 0 for the paper's loss): without it

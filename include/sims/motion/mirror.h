@@ -1,7 +1,7 @@
 // Left–right mirroring about the humanoid's x–z plane (y → −y), used to double the motion
 // data: left and right bodies swap, 3-DoF joints negate their x and z hinges and keep y,
 // 1-DoF joints are unchanged, the root quaternion (w, x, y, z) becomes (w, −x, y, −z), and
-// captions swap "left"/"right" (REFERENCE_FACTS §9).
+// captions swap "left"/"right".
 #pragma once
 
 #include <string>

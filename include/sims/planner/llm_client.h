@@ -12,15 +12,17 @@
 #include <nlohmann/json.hpp>
 
 #include "sims/core/config.h"
+#include "sims/core/environment.h"
 #include "sims/core/error.h"
 
 namespace sims::planner {
 
-/// LLM back-end settings (configs/planner/planner.json "llm"; flags and environment override).
+/// LLM back-end settings (configs/planner/planner.json "llm"; flags override). The client uses
+/// them verbatim; the apps fill the open ones from the environment with WithEnvironment.
 struct LlmConfig {
-  std::string endpoint;  ///< Base URL ("http://127.0.0.1:8080/v1"); "" → $SIMS_LLM_ENDPOINT.
-  std::string model = "default";  ///< Model name; $SIMS_LLM_MODEL overrides "default".
-  std::string api_key;            ///< Key; "" → $<api_key_env>, then $OPENAI_API_KEY.
+  std::string endpoint;           ///< Base URL ("http://127.0.0.1:8080/v1"); "" = no LLM.
+  std::string model = "default";  ///< Model name (the apps replace "default" by $SIMS_LLM_MODEL).
+  std::string api_key;  ///< Key ("" = none; the apps use $<api_key_env>, $OPENAI_API_KEY).
   std::string api_key_env = "SIMS_LLM_API_KEY";  ///< Environment variable holding the key.
   double timeout_s = 60.0;                       ///< Whole-request time-out (connect + reply).
   double temperature = 0.0;  ///< Sampling temperature (0: as repeatable as possible).
@@ -47,13 +49,13 @@ struct LlmConfig {
   }
   /// Positive time-out and token limit, candidates ≥ 1.
   void Validate() const;
-  /// Endpoint after the environment fallback ("" = no LLM).
-  std::string ResolvedEndpoint() const;
-  /// Model after the environment fallback.
-  std::string ResolvedModel() const;
-  /// API key after the environment fallbacks ("" = none).
-  std::string ResolvedApiKey() const;
 };
+
+/// `config` with what it leaves open taken from `environment`: endpoint "" → $SIMS_LLM_ENDPOINT,
+/// model "default" → $SIMS_LLM_MODEL (if set), api_key "" → $<api_key_env>, then
+/// $OPENAI_API_KEY. The apps call it with the environment read at start-up; the library never
+/// reads the environment itself, so a default Environment leaves `config` as it is.
+LlmConfig WithEnvironment(LlmConfig config, const Environment& environment);
 
 /// Why a request failed.
 class LlmError : public Error {
@@ -101,9 +103,8 @@ struct ChatMessage {
   std::vector<std::string> image_urls;  ///< Images (data: or http URLs) after the text, if any.
 };
 
-/// The chat-completions request body. Uses `config` verbatim (no environment fallbacks), so
-/// callers that must not read the environment resolve endpoint, model and key themselves.
-/// Messages with images become OpenAI content-part arrays ({"type": "text"} then
+/// The chat-completions request body from `config` (model, sampling, json_mode). Messages with
+/// images become OpenAI content-part arrays ({"type": "text"} then
 /// {"type": "image_url", "image_url": {"url": ...}}).
 nlohmann::json ChatRequestJson(const LlmConfig& config, const std::vector<ChatMessage>& messages,
                                uint64_t seed);
@@ -113,8 +114,8 @@ nlohmann::json ChatRequestJson(const LlmConfig& config, const std::vector<ChatMe
 std::string PostChatRequest(const std::string& endpoint, const std::string& api_key,
                             const nlohmann::json& request, double timeout_s);
 
-/// Sends a chat-completions request (after the environment fallbacks of LlmConfig) and returns
-/// choices[0].message.content.
+/// Sends a chat-completions request to config.endpoint (with config.api_key) and returns
+/// choices[0].message.content; an empty endpoint is an LlmError(kConfig).
 std::string ChatCompletion(const LlmConfig& config, const std::vector<ChatMessage>& messages,
                            uint64_t seed);
 

@@ -63,9 +63,9 @@ class StoryPlanner {
   explicit StoryPlanner(PlannerConfig config = LoadPlannerConfig(), TextEmbedder embedder = {});
   ~StoryPlanner();
 
-  /// Theme → long script. Uses the LLM when an endpoint is configured (config or
-  /// $SIMS_LLM_ENDPOINT); on no endpoint, time-out, HTTP error or an invalid reply it falls back
-  /// to the embedded planner and says why in `note`.
+  /// Theme → long script. Uses the LLM when config.llm.endpoint is set (the apps fill it from
+  /// $SIMS_LLM_ENDPOINT with WithEnvironment); on no endpoint, time-out, HTTP error or an invalid
+  /// reply it falls back to the embedded planner and says why in `note`.
   ScriptResult ScriptForTheme(const std::string& theme, Difficulty difficulty, uint64_t seed) const;
   /// The embedded planner only.
   ScriptResult EmbeddedScript(const std::string& theme, Difficulty difficulty, uint64_t seed) const;
@@ -126,6 +126,9 @@ struct PlanRequest {
   std::string llm_key;                     ///< Overrides the config's key.
   double llm_timeout_s = 0.0;              ///< Overrides the config's time-out when positive.
   std::vector<std::string> extra_scripts;  ///< --db: appended to the config's extra_scripts.
+  /// Fills the LLM settings the config and flags leave open (WithEnvironment); the apps pass
+  /// InstalledEnvironment(), the default fills nothing.
+  Environment environment;
 };
 
 /// Theme or script → plan, as plan_story does it; errors name the flag or file.

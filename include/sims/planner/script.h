@@ -1,4 +1,4 @@
-// SIMS short scripts (ARCHITECTURE §4): the JSON an LLM or a person writes, its tolerant loader,
+// SIMS short scripts (SIMS §3.1): the JSON an LLM or a person writes, its tolerant loader,
 // the keyframe grammar, and the short-script database shipped in assets/scripts/.
 //
 //   {"summary": "...", "emotion": "sad", "scene": "bedroom",

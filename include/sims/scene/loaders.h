@@ -80,7 +80,8 @@ Scene LoadMeshScene(const std::filesystem::path& path, const MeshLoadOptions& op
 TriangleMesh LoadTriangleMesh(const std::filesystem::path& path,
                               const MeshLoadOptions& options = {});
 
-/// Where the Debian morse-simulator-data lives: $SIMS_MORSE_DIR, else /usr/share/morse/data.
+/// Where the Debian morse-simulator-data lives: the installed Environment's morse_dir
+/// ($SIMS_MORSE_DIR in the apps), else /usr/share/morse/data.
 std::filesystem::path MorseDataDir();
 
 /// A MORSE .blend file categorised by configs/scene/morse_categories.json.
@@ -144,13 +145,14 @@ struct ScenePlanRef {
 /// Splits "plan.json#<id>" (a file whose name really contains '#' is taken whole).
 ScenePlanRef ParseScenePlanRef(const std::string& ref);
 
-/// PartNet folder for ScenePlans: $SIMS_PARTNET_DIR, else data/partnet.
+/// PartNet folder for ScenePlans: the installed Environment's partnet_dir ($SIMS_PARTNET_DIR in
+/// the apps), else data/partnet.
 std::filesystem::path DefaultPartNetRoot();
 
 /// Loads by extension and content: a built-in scene name (BuiltinSceneNames, optionally
 /// "builtin:<name>"), a PartNet folder, a ScanNet folder or .ply with annotations, a 3D-FRONT
-/// house .json (models in ../3D-FUTURE-model or $SIMS_FUTURE_DIR), a ScenePlan .json
-/// ("plan.json#<id>"; PartNet in $SIMS_PARTNET_DIR or data/partnet), a .blend (MORSE
+/// house .json (models in the installed Environment's future_dir, else ../3D-FUTURE-model), a
+/// ScenePlan .json ("plan.json#<id>"; PartNet in DefaultPartNetRoot()), a .blend (MORSE
 /// categories), or any other mesh file.
 Scene LoadSceneFile(const std::string& path);
 

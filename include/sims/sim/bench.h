@@ -1,5 +1,5 @@
 // Environment benchmark: the batched env step against a raw mj_step loop on the same model,
-// measured in one run (ARCHITECTURE §6), used by apps/bench_env.
+// measured in one run, used by apps/bench_env.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -14,7 +14,7 @@ inline constexpr int kSelfObsDim = 223;     ///< 1 + 14·3 + 15·6 + 15·3 + 15�
 inline constexpr int kAmpObsStepDim = 125;  ///< 1 + 6 + 3 + 3 + 72 + 28 + 12.
 inline constexpr int kDofObsDim = 72;       ///< 12 joints × tan-norm 6-d.
 
-/// Observation options (ASE rootHeightObs / localRootObs; see REFERENCE_FACTS §1–2).
+/// Observation options (ASE rootHeightObs / localRootObs).
 struct ObsOptions {
   bool root_height = true;     ///< Include the root height (else zero).
   bool local_root_rot = true;  ///< Root rotation heading-local (InterScene) vs global (ASE AMP).

@@ -1,4 +1,4 @@
-// Heightmap benchmark (ARCHITECTURE §6): raw Embree down-ray rate on the built-in house, the
+// Heightmap benchmark (apps/bench_heightmap): raw Embree down-ray rate on the built-in house, the
 // egocentric sampler's cost per env per control step, and the raw physics cost per env per
 // control step (4 × mj_step of the humanoid in the house model), measured in one run.
 #pragma once

@@ -1,12 +1,12 @@
 // Rewards and success rules shared by the contact skills.
 //
-// Contact skills (sit, lie, reach; SIMS supplementary, ARCHITECTURE §3):
+// Contact skills (sit, lie, reach; SIMS supplementary):
 //   d² = ‖x* − x_root‖² (xy), x* the anchor the character walks to
 //   far (d² > 0.5): r = 0.6·r_near + 0.4·r_far;   near: r = 0.6·r_near + 0.4
 //   r_far  = 0.5·exp(−0.5·d²) + 0.4·exp(−2·(v* − d*·ẋ)²) + 0.1·(d*·d_facing)²
 //   r_near = exp(−10·Σ_j ‖g_j − x_j‖²), g_j the nearest point of joint j's goal part.
 //
-// UniHSI contact pairs (REFERENCE_FACTS §6, the unified controller): per joint a contact term
+// UniHSI contact pairs (the UniHSI paper, its unified controller): per joint a contact term
 // r_c = exp(−10·d²) (contact) or 1 − exp(−10·d²) (not contact) and a direction term
 // r_dir = max(0, dir·normalize(joint − target)) (1 without a direction or for not-contact),
 // combined with adaptive weights w_i = (1 − r_i)/(n − Σr + 1e-4); then over the 15 joints

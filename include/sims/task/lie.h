@@ -1,5 +1,5 @@
-// Lie: the pelvis on a bed's mattress and the head on a pillow. Contact reward (ARCHITECTURE
-// §3, contact_reward.h) with the anchor x* at the mattress centre and g_j the surface point of
+// Lie: the pelvis on a bed's mattress and the head on a pillow. Contact reward (see
+// contact_reward.h) with the anchor x* at the mattress centre and g_j the surface point of
 // the goal part nearest to joint j (the nearest of the bed's pillows for the head); success
 // when both joints are within contact_success_threshold (0.30 m for lie) of their parts; the
 // episode ends without failure once success has held for success_hold_steps. Reference init

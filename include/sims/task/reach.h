@@ -1,5 +1,5 @@
 // Reach: the left or right hand to a point on a part of an object (table, desk, cabinet,
-// shelf, wardrobe) at a low, medium or high height. Contact reward (ARCHITECTURE §3,
+// shelf, wardrobe) at a low, medium or high height. Contact reward (see
 // contact_reward.h) with the anchor x* and the hand's goal g both at the target point;
 // success when the hand is within contact_success_threshold (0.20 m); the episode ends
 // without failure once success has held for success_hold_steps. Targets are surface samples

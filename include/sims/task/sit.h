@@ -1,5 +1,5 @@
 // Sit: the pelvis on a seat surface (chair, armchair, sofa, stool), optionally the torso
-// against the back rest (config.sit_back_contact). Contact reward (ARCHITECTURE §3, see
+// against the back rest (config.sit_back_contact). Contact reward (see
 // contact_reward.h) with the anchor x* at the seat centre and g_j the seat's (back's) surface
 // point nearest to joint j; success when the pelvis is within contact_success_threshold
 // (0.20 m) of the seat; the episode ends without failure once success has held for

@@ -8,7 +8,7 @@
 // ScenePlan for eval_policy and the FSM).
 //
 // Reward: the UniHSI contact-pair reward with adaptive weights, or the walking-step reward
-// (contact_reward.h, REFERENCE_FACTS §6). Step rule: when CheckUniHsiStep triggers, the step
+// (contact_reward.h). Step rule: when CheckUniHsiStep triggers, the step
 // advances (the simulation state is kept) if it passed the tight thresholds, otherwise the
 // episode ends (truncation, as UniHSI resets). Passing the last step is a success and ends the
 // episode. Excessive contact force terminates it.

@@ -1,7 +1,7 @@
 // Walk: the reference skill. Copy this file to write a new one.
 //
 // Goal: the pelvis reaches a target point on free floor, moving at about target_speed, facing
-// the way it goes, and then stands still (SIMS supplementary, ARCHITECTURE §3):
+// the way it goes, and then stands still (SIMS supplementary):
 //   d² = ‖x* − x_root‖² (xy)
 //   far (d² > 0.5):  r = 0.4·r_near + 0.5·r_far
 //   near:            r = 0.4·r_near + 0.5 + 0.1·r_still
