@@ -1,5 +1,5 @@
-// Learner benchmark (ARCHITECTURE §6): libtorch sgemm GFLOP/s on this machine against the
-// GFLOP/s achieved by the PPO + AMP update of a training config, measured in one run.
+// Learner and training benchmarks (docs/training_speed.md): libtorch sgemm GFLOP/s on this machine
+// against the GFLOP/s achieved by the PPO + AMP update of a training config, measured in one run.
 #pragma once
 
 #include <filesystem>

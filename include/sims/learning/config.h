@@ -1,5 +1,5 @@
 // Hyper-parameters of PPO + (conditional) AMP training, bound to JSON (configs/skills/*.json).
-// Defaults follow ASE/UniHSI (REFERENCE_FACTS §5) except where a 2-core CPU needs smaller
+// Defaults follow ASE/UniHSI (their humanoid AMP configs) except where a 2-core CPU needs smaller
 // networks and batches; the GPU values are noted beside each field.
 #pragma once
 
