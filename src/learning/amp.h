@@ -5,9 +5,9 @@
 
 #include <torch/torch.h>
 
+#include "learning/networks.h"
 #include "sims/core/rng.h"
 #include "sims/learning/config.h"
-#include "learning/networks.h"
 
 namespace sims::learning {
 

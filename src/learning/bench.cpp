@@ -205,22 +205,6 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
 
 namespace {
 
-// A TCP port on 127.0.0.1 that was free a moment ago (the kernel picks it).
-int FreeLoopbackPort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  SIMS_CHECK_MSG(fd >= 0, "socket() failed");
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  addr.sin_port = 0;
-  socklen_t len = sizeof(addr);
-  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0 &&
-                  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0;
-  close(fd);
-  SIMS_CHECK_MSG(ok, "could not find a free loopback port");
-  return ntohs(addr.sin_port);
-}
-
 // Starts `count` workers at once (as ranks of one run, or independently), waits for all and
 // returns their JSON results.
 std::vector<nlohmann::json> RunWorkers(const RankBenchOptions& o, int count, bool as_ranks,
@@ -260,6 +244,21 @@ std::vector<nlohmann::json> RunWorkers(const RankBenchOptions& o, int count, boo
 }
 
 }  // namespace
+
+int FreeLoopbackPort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  SIMS_CHECK_MSG(fd >= 0, "socket() failed");
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  addr.sin_port = 0;
+  socklen_t len = sizeof(addr);
+  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0 &&
+                  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0;
+  close(fd);
+  SIMS_CHECK_MSG(ok, "could not find a free loopback port");
+  return ntohs(addr.sin_port);
+}
 
 nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& o) {
   if (o.ranks < 2) ThrowInputError("--ranks", "ranks", "at least 2", std::to_string(o.ranks));

@@ -726,6 +726,19 @@ void SaveArchiveAtomically(torch::serialize::OutputArchive& archive,
   archive.save_to(tmp.string());
   std::filesystem::rename(tmp, path);
 }
+// A module's parameters and buffers stored as one sub-archive under `key`.
+template <class Module>
+void WriteModule(torch::serialize::OutputArchive& a, const std::string& key, const Module& m) {
+  torch::serialize::OutputArchive sub;
+  m->save(sub);
+  a.write(key, sub);
+}
+template <class Module>
+void ReadModule(torch::serialize::InputArchive& a, const std::string& key, Module& m) {
+  torch::serialize::InputArchive sub;
+  a.read(key, sub);
+  m->load(sub);
+}
 torch::Tensor StringTensor(const std::string& s) {
   auto t = torch::empty({static_cast<int64_t>(s.size())}, torch::kUInt8);
   std::memcpy(t.data_ptr<uint8_t>(), s.data(), s.size());
@@ -755,11 +768,8 @@ void ReadPolicyFile(
 // The weights a policy file carries: actor-critic and observation normaliser.
 void LoadPolicyWeights(torch::serialize::InputArchive& archive, ActorCritic& ac,
                        RunningMeanStd& obs_norm) {
-  torch::serialize::InputArchive ac_archive, norm_archive;
-  archive.read("actor_critic", ac_archive);
-  ac->load(ac_archive);
-  archive.read("obs_norm", norm_archive);
-  obs_norm->load(norm_archive);
+  ReadModule(archive, "actor_critic", ac);
+  ReadModule(archive, "obs_norm", obs_norm);
 }
 }  // namespace
 
@@ -780,20 +790,14 @@ void SetRng(Rng& rng, const torch::Tensor& t) {
 // What every rank shares: networks, normalisers, optimiser, minibatch order and counters.
 void Trainer::Impl::WriteLearnerState(torch::serialize::OutputArchive& archive) const {
   const auto& m = *this;
-  torch::serialize::OutputArchive ac, norms, vn, opt;
-  m.ac->save(ac);
-  archive.write("actor_critic", ac);
-  m.obs_norm->save(norms);
-  archive.write("obs_norm", norms);
-  m.value_norm->save(vn);
-  archive.write("value_norm", vn);
+  WriteModule(archive, "actor_critic", m.ac);
+  WriteModule(archive, "obs_norm", m.obs_norm);
+  WriteModule(archive, "value_norm", m.value_norm);
   if (m.use_amp) {
-    torch::serialize::OutputArchive d, an;
-    m.disc->save(d);
-    archive.write("disc", d);
-    m.amp_norm->save(an);
-    archive.write("amp_norm", an);
+    WriteModule(archive, "disc", m.disc);
+    WriteModule(archive, "amp_norm", m.amp_norm);
   }
+  torch::serialize::OutputArchive opt;
   m.optim->save(opt);
   archive.write("optimizer", opt);
   WriteTensor(archive, "rng", RngTensor(m.rng));
@@ -808,20 +812,14 @@ void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
   if (saved_cfg["network"] != ConfigToJson(m.cfg.network))
     ThrowInputError(source, "network", "the same network sizes as the current config",
                     saved_cfg["network"].dump());
-  torch::serialize::InputArchive ac, on, vn, opt;
-  archive.read("actor_critic", ac);
-  m.ac->load(ac);
-  archive.read("obs_norm", on);
-  m.obs_norm->load(on);
-  archive.read("value_norm", vn);
-  m.value_norm->load(vn);
+  ReadModule(archive, "actor_critic", m.ac);
+  ReadModule(archive, "obs_norm", m.obs_norm);
+  ReadModule(archive, "value_norm", m.value_norm);
   if (m.use_amp) {
-    torch::serialize::InputArchive d, an;
-    archive.read("disc", d);
-    m.disc->load(d);
-    archive.read("amp_norm", an);
-    m.amp_norm->load(an);
+    ReadModule(archive, "disc", m.disc);
+    ReadModule(archive, "amp_norm", m.amp_norm);
   }
+  torch::serialize::InputArchive opt;
   archive.read("optimizer", opt);
   m.optim->load(opt);
   SetRng(m.rng, ReadTensor(archive, "rng"));
@@ -931,11 +929,9 @@ void Trainer::InitFromPolicy(const std::filesystem::path& path) {
 
 void Trainer::ExportPolicy(const std::filesystem::path& path, const std::string& extra_json) const {
   const auto& m = *impl_;
-  torch::serialize::OutputArchive archive, ac, on;
-  m.ac->save(ac);
-  archive.write("actor_critic", ac);
-  m.obs_norm->save(on);
-  archive.write("obs_norm", on);
+  torch::serialize::OutputArchive archive;
+  WriteModule(archive, "actor_critic", m.ac);
+  WriteModule(archive, "obs_norm", m.obs_norm);
   nlohmann::json segs = nlohmann::json::array();
   for (const auto& s : m.segments)
     segs.push_back({{"name", s.name},

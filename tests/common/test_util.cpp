@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "sims/core/config.h"
+#include "sims/core/error.h"
 
 namespace sims::testing {
 
@@ -67,5 +68,14 @@ ScopedAllowMujocoWarnings::ScopedAllowMujocoWarnings() : start_(g_warning_count.
 }
 ScopedAllowMujocoWarnings::~ScopedAllowMujocoWarnings() { --g_allow_warnings; }
 int ScopedAllowMujocoWarnings::count() const { return g_warning_count.load() - start_; }
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 }  // namespace sims::testing

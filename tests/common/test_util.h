@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -12,6 +13,9 @@ namespace sims::testing {
 
 /// tests/testdata/<relative>.
 std::filesystem::path TestData(const std::string& relative);
+
+/// The message of the sims::Error `f` throws, or "" when it throws none.
+std::string ErrorOf(const std::function<void()>& f);
 
 /// A fresh empty temporary directory, unique per call.
 std::filesystem::path TempDir(const std::string& tag);

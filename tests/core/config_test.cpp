@@ -79,12 +79,7 @@ TEST(ConfigTest, FileRoundTrip) {
 }
 
 std::string ErrorOf(const nlohmann::json& j) {
-  try {
-    ConfigFromJson<Outer>(j, "cfg.json");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return sims::testing::ErrorOf([&] { ConfigFromJson<Outer>(j, "cfg.json"); });
 }
 
 TEST(ConfigTest, ErrorsNameFileFieldAndExpectation) {

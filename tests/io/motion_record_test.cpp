@@ -14,14 +14,7 @@
 namespace sims::io {
 namespace {
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using sims::testing::ErrorOf;
 
 TEST(MotionRecordTest, BuilderComputesBodiesAndKeyframeRanges) {
   const MotionRecord rec = testing::TestRecord(1.0);

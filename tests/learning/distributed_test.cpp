@@ -28,14 +28,7 @@ std::optional<DistributedConfig> FromVars(const std::map<std::string, std::strin
   });
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using sims::testing::ErrorOf;
 
 TEST(DistributedConfigTest, ReadsTorchrunOpenMpiAndSlurmVariables) {
   EXPECT_FALSE(FromVars({}).has_value()) << "no launcher: a plain single-process run";

@@ -1,8 +1,5 @@
 // train_policy as separate processes on 127.0.0.1: a 2-rank run started the way a plain shell
 // loop (or mpirun) starts it, a rank killed mid-run, and --resume of that run with one process.
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -16,21 +13,10 @@
 #include "sims/core/config.h"
 #include "sims/io/subprocess.h"
 #include "sims/io/training_report.h"
+#include "sims/learning/bench.h"
 
 namespace sims::learning {
 namespace {
-
-int FreePort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof(addr);
-  bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr));
-  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
-  close(fd);
-  return ntohs(addr.sin_port);
-}
 
 std::string ReadText(const std::filesystem::path& p) {
   std::ifstream in(p);
@@ -77,7 +63,7 @@ std::vector<double> Column(const std::filesystem::path& csv, const std::string& 
 TEST(TrainPolicyRanksTest, TwoRanksOnLoopbackTrainOneRunThatRankZeroWrites) {
   const auto dir = sims::testing::TempDir("ranks_loop");
   const auto config = WriteConfig(dir, 1);
-  const int port = FreePort();
+  const int port = FreeLoopbackPort();
   std::vector<std::unique_ptr<io::Subprocess>> ranks;
   for (int r = 0; r < 2; ++r)
     ranks.push_back(StartRank(
@@ -99,7 +85,7 @@ TEST(TrainPolicyRanksTest, AKilledRankEndsTheRunAndItResumesWithOneProcess) {
   const auto dir = sims::testing::TempDir("ranks_kill");
   const auto config = WriteConfig(dir, 1);
   const auto out = dir / "out";
-  const int port = FreePort();
+  const int port = FreeLoopbackPort();
   const std::vector<std::string> args = {
       "--config",     config.string(), "--out",          out.string(),
       "--iterations", "100000",        "--dist-timeout", "10"};
@@ -148,7 +134,7 @@ TEST(TrainPolicyRanksTest, MpirunLaunchesTwoRanks) {
   io::SubprocessOptions o;
   o.stdout_file = dir / "mpirun.log";
   o.stderr_to_stdout = true;
-  o.env = {"MASTER_PORT=" + std::to_string(FreePort()), "OMP_NUM_THREADS=1"};
+  o.env = {"MASTER_PORT=" + std::to_string(FreeLoopbackPort()), "OMP_NUM_THREADS=1"};
   io::Subprocess mpi(
       {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", SIMS_TRAIN_POLICY_BIN,
        "--config", config.string(), "--out", (dir / "out").string(), "--log-level", "warn"},

@@ -33,12 +33,7 @@ void ExpectSame(const BvhMotion& a, const BvhMotion& b) {
 }
 
 std::string ErrorOf(const std::filesystem::path& p) {
-  try {
-    ReadBvh(p);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return sims::testing::ErrorOf([&] { ReadBvh(p); });
 }
 
 TEST(BvhTest, ReadsCmuClip) {

@@ -16,12 +16,7 @@ namespace {
 using testing_util::WigglyClip;
 
 std::string ErrorOf(const std::filesystem::path& p) {
-  try {
-    LoadClip(p);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return sims::testing::ErrorOf([&] { LoadClip(p); });
 }
 
 TEST(MotionClipTest, SaveLoadRoundTrip) {

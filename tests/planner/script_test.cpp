@@ -16,12 +16,7 @@ namespace {
 using ::testing::HasSubstr;
 
 std::string ErrorOf(const std::string& text, GrammarMode mode = GrammarMode::kLenient) {
-  try {
-    ParseShortScriptText(text, "story.json", mode);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return sims::testing::ErrorOf([&] { ParseShortScriptText(text, "story.json", mode); });
 }
 
 TEST(ScriptTest, AcceptsSimsVariants) {

@@ -53,6 +53,10 @@ struct RankBenchOptions {
 /// projection to larger rank counts from those measured inputs.
 nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& options);
 
+/// A TCP port on 127.0.0.1 that was free a moment ago (the kernel picks it): a rendezvous
+/// port for ranks started on this machine.
+int FreeLoopbackPort();
+
 /// Best-of GFLOP/s of an n×n×n float matmul in libtorch.
 double MeasureSgemmGflops(int n = 1024, int repeats = 5);
 
