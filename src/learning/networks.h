@@ -39,6 +39,16 @@ class RunningMeanStdImpl : public torch::nn::Module {
 };
 TORCH_MODULE(RunningMeanStd);
 
+/// Per-column count, sum and sum of squares in float64.
+struct FixedOrderMoments {
+  double count = 0;      ///< Rows.
+  torch::Tensor sum;     ///< [d] column sums.
+  torch::Tensor sum_sq;  ///< [d] column sums of squares.
+};
+/// Moments of x viewed as [rows, last dim] (a 1-d x is one column), summed row by row in a
+/// fixed order so the result is the same at any thread count.
+FixedOrderMoments ColumnMoments(const torch::Tensor& x);
+
 /// A plain MLP with a configurable activation; the last layer is linear.
 class MlpImpl : public torch::nn::Module {
  public:

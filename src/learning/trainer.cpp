@@ -154,11 +154,11 @@ struct Trainer::Impl {
   void UpdateNorm(RunningMeanStd& norm, const torch::Tensor& x) {
     if (!comm) return norm->Update(x);
     torch::NoGradGuard guard;
+    const auto local = ColumnMoments(x.reshape({-1, norm->size()}));
     const int64_t d = norm->size();
-    const auto xd = x.to(torch::kFloat64).reshape({-1, d});
-    auto moments = torch::cat({torch::full({1}, static_cast<double>(xd.size(0)), torch::kFloat64),
-                               xd.sum(0), xd.pow(2).sum(0)})
-                       .contiguous();
+    auto moments =
+        torch::cat({torch::full({1}, local.count, torch::kFloat64), local.sum, local.sum_sq})
+            .contiguous();
     AllReduce(moments);
     const double count = moments[0].item<double>();
     if (count <= 0) return;
@@ -206,14 +206,13 @@ struct Trainer::Impl {
     if (!disc_params.empty()) ScatterGrads(disc_params, disc_grads);
   }
 
-  // Mean and unbiased standard deviation of a tensor over all ranks.
+  // Mean and unbiased standard deviation of a tensor (over all ranks), summed in a fixed
+  // order so that they do not depend on the thread count.
   std::pair<double, double> GlobalMeanStd(const torch::Tensor& x) {
-    const auto xd = x.to(torch::kFloat64);
-    auto m = torch::stack({torch::full({}, static_cast<double>(xd.numel()), torch::kFloat64),
-                           xd.sum(), xd.pow(2).sum()})
-                 .contiguous();
-    AllReduce(m);
-    const double n = m[0].item<double>(), sum = m[1].item<double>(), sq = m[2].item<double>();
+    const auto local = ColumnMoments(x.reshape({-1}));
+    double m[] = {local.count, local.sum.item<double>(), local.sum_sq.item<double>()};
+    if (comm) comm->AllReduceSum(m, 3);
+    const double n = m[0], sum = m[1], sq = m[2];
     const double mean = sum / std::max(n, 1.0);
     const double var = n > 1 ? std::max(sq - n * mean * mean, 0.0) / (n - 1) : 0.0;
     return {mean, std::sqrt(var)};
@@ -503,12 +502,8 @@ Trainer::Impl::Batch Trainer::Impl::PrepareBatch(Timings* timing) {
   const auto ret_f = returns.reshape({T * N});
   b.advantages = adv.reshape({T * N});
   if (ppo.normalize_advantage) {
-    if (comm) {
-      const auto [mean, std] = GlobalMeanStd(b.advantages);
-      b.advantages = (b.advantages - mean) / (std + 1e-8);
-    } else {
-      b.advantages = (b.advantages - b.advantages.mean()) / (b.advantages.std() + 1e-8);
-    }
+    const auto [mean, std] = GlobalMeanStd(b.advantages);
+    b.advantages = (b.advantages - mean) / (std + 1e-8);
   }
   b.returns = ppo.normalize_value ? value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
   timing->ppo += Since(t_phase);
