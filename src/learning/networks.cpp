@@ -87,6 +87,15 @@ void RunningMeanStdImpl::Merge(double n, const torch::Tensor& batch_mean,
   count_.copy_(total);
 }
 
+int64_t RunningMeanStdImpl::Soften(double count, double constant_var) {
+  torch::NoGradGuard guard;
+  count_.clamp_max_(count);
+  const auto constant = var_ < constant_var;
+  mean_.masked_fill_(constant, 0.0);
+  var_.masked_fill_(constant, 1.0);
+  return constant.sum().item<int64_t>();
+}
+
 torch::Tensor RunningMeanStdImpl::Normalize(const torch::Tensor& x) const {
   const auto mean = mean_.to(torch::kFloat32), std = torch::sqrt(var_ + 1e-5).to(torch::kFloat32);
   return torch::clamp((x - mean) / std, -clip_, clip_);

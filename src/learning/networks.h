@@ -24,6 +24,10 @@ class RunningMeanStdImpl : public torch::nn::Module {
   /// Folds a batch given by its size, mean and population variance (float64 [size]); what
   /// Update() does after computing them, and what ranks do with all-reduced moments.
   void Merge(double n, const torch::Tensor& batch_mean, const torch::Tensor& batch_var);
+  /// Caps the sample count at `count` (later batches then weigh in at once) and restarts the
+  /// inputs whose variance is below `constant_var` at mean 0, variance 1 (a warm start from
+  /// another task, where those inputs never varied). Returns how many inputs restarted.
+  int64_t Soften(double count, double constant_var);
   /// Feature count.
   int64_t size() const { return mean_.size(0); }
   /// (x − mean) / sqrt(var + eps), clamped.

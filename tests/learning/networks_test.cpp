@@ -90,5 +90,23 @@ TEST(NormalizerTest, UpdateIsBitIdenticalAcrossThreadCounts) {
   SetThreadCount(before);
 }
 
+// A warm start keeps what the source task learnt but lets the new task's batches weigh in at
+// once, and restarts inputs that never varied there (they would sit at the clip bound).
+TEST(NormalizerTest, SoftenCapsTheCountAndRestartsConstantInputs) {
+  RunningMeanStd n(2);
+  auto x = torch::zeros({1000, 2});
+  x.select(1, 0).copy_(torch::linspace(-1.0, 1.0, 1000));  // column 1 stays 0
+  for (int i = 0; i < 100; ++i) n->Update(x);
+  EXPECT_EQ(n->Soften(10.0, 1e-6), 1);
+  auto buffers = n->named_buffers();
+  EXPECT_DOUBLE_EQ(buffers["count"].item<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(buffers["mean"][1].item<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(buffers["var"][1].item<double>(), 1.0);
+  EXPECT_NEAR(buffers["var"][0].item<double>(), 1.0 / 3.0, 1e-2) << "varied input kept";
+  // A new batch (column 1 now at 4) moves the mean almost all the way: 1000 / 1010.
+  n->Update(torch::full({1000, 2}, 4.0));
+  EXPECT_NEAR(n->named_buffers()["mean"][1].item<double>(), 4.0 * 1000.0 / 1010.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace sims::learning
