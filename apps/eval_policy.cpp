@@ -6,6 +6,7 @@
 
 #include "sims/core/app.h"
 #include "sims/core/config.h"
+#include "sims/core/hash.h"
 #include "sims/eval/policy_eval.h"
 
 int main(int argc, char** argv) {
@@ -34,7 +35,9 @@ int main(int argc, char** argv) {
     o.config = config;
     o.partnet_root = partnet;
     const auto report = sims::eval::EvaluatePolicy(o);
-    const auto j = report.ToJson();
+    auto j = report.ToJson();
+    // Which weights were measured, whatever the path was called then.
+    j["checkpoint_sha256"] = sims::Sha256OfFile(checkpoint);
     if (!out.empty()) sims::WriteJsonFile(out, j);
     if (json) {
       std::cout << j.dump(2) << "\n";

@@ -25,7 +25,9 @@ int main(int argc, char** argv) {
   app.add_option("--difficulties", o.difficulties, "simple mid hard");
   app.add_option("--seed", o.seed, "seed of story 0");
   app.add_option("--style-model", o.style_model,
-                 "motion-text model folder for caption -> z (default data/language/text_motion "
+                 "motion-text model folder for caption -> z (default: data/language/text_motion, "
+                 "else the bundled "
+                 "assets/language/text_motion, "
                  "when present)");
   app.add_option("--outputs", outputs,
                  "also write each story's run_story outputs to DIR/<difficulty>_<i>");

@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
                  "built-in scene name or scene file ('' = retrieve a built-in layout, as "
                  "eval_story does)");
   app.add_option("--style-model", input.style_model,
-                 "motion-text model folder for caption -> z (default data/language/text_motion "
+                 "motion-text model folder for caption -> z (default: data/language/text_motion, "
+                 "else the bundled "
+                 "assets/language/text_motion, "
                  "when present)");
   app.add_option("--policies", policies, "policy set (default assets/policies/policies.json)");
   app.add_option("--options", options_file, "FSM options JSON (e.g. configs/story.json)");

@@ -1,7 +1,7 @@
 // Shows how a caption is understood: its 64-d style embedding z and the nearest training
 // captions and clips by cosine similarity.
 //   text_to_style "a person walks sadly" [--model data/language/text_motion] [--top 5] [--json]
-//   text_to_style --eval configs/language/heldout_paraphrases.json
+//   text_to_style --eval configs/language/dev_paraphrases.json
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -14,7 +14,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"Caption -> style embedding z, with the nearest training captions and clips"};
-  std::string caption, model_dir = sims::DataPath("language/text_motion").string(), eval;
+  std::string caption, model_dir = sims::language::DefaultStyleModelDir().string(), eval;
   int top = 5;
   bool as_json = false;
   sims::AppFlags flags;

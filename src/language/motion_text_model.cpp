@@ -6,6 +6,7 @@
 #include "language/motion_text_net.h"
 #include "sims/core/config.h"
 #include "sims/core/error.h"
+#include "sims/core/paths.h"
 
 namespace sims::language {
 
@@ -166,8 +167,25 @@ void MotionTextModel::Save(const fs::path& dir, const TextEncoderConfig& text_en
   impl_->text_encoder = text_encoder;
 }
 
+fs::path DefaultStyleModelDir() {
+  const fs::path trained = DataPath("language/text_motion");
+  if (fs::exists(trained / "model.json")) return trained;
+  const fs::path bundled = AssetPath("language/text_motion");
+  if (fs::exists(bundled / "model.json")) return bundled;
+  return trained;
+}
+
+std::string TrainStyleModelCommand() {
+  return "build/bin/train_text_motion --manifest data/motions/synthetic/manifest.json --out " +
+         DataPath("language/text_motion").string();
+}
+
 MotionTextModel MotionTextModel::Load(const fs::path& dir) {
   const fs::path meta = dir / "model.json";
+  if (!fs::exists(meta))
+    ThrowInputError(meta.string(), "",
+                    "a motion-text model (train one with: " + TrainStyleModelCommand() + ")",
+                    "missing");
   const json j = ReadJsonFile(meta);
   if (!j.is_object() || j.value("format", "") != "sims-motion-text-1")
     ThrowInputError(meta.string(), "format", "\"sims-motion-text-1\"",

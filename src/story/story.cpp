@@ -85,7 +85,7 @@ void PreparePlan(const StoryInput& input, PreparedStory* p) {
 // Caption → z through the motion–text model, and what each caption was understood as.
 void AddStyles(const StoryInput& input, PreparedStory* p) {
   const std::filesystem::path model = input.style_model.empty()
-                                          ? DataPath("language/text_motion")
+                                          ? language::DefaultStyleModelDir()
                                           : std::filesystem::path(input.style_model);
   if (!std::filesystem::exists(model / "bank.json") && input.style_model.empty()) return;
   const auto embedder = language::StyleEmbedder::Load(model);

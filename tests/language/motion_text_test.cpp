@@ -209,5 +209,14 @@ TEST(TrainMotionTextTest, StyleEmbedderUsesStoredEncoderSettings) {
                Error);
 }
 
+// A missing model names the command that trains one, not just the absent file.
+TEST(MotionTextModelTest, MissingModelNamesTheTrainingCommand) {
+  const auto dir = sims::testing::TempDir("no_model");
+  const std::string e = sims::testing::ErrorOf([&] { MotionTextModel::Load(dir); });
+  EXPECT_NE(e.find((dir / "model.json").string()), std::string::npos) << e;
+  EXPECT_NE(e.find("train_text_motion --manifest"), std::string::npos) << e;
+  EXPECT_EQ(TrainStyleModelCommand().find("build/bin/train_text_motion"), 0u);
+}
+
 }  // namespace
 }  // namespace sims::language

@@ -131,6 +131,14 @@ class MotionTextModel {
   friend struct MotionTextTrainerAccess;
 };
 
+/// The default motion–text model folder: data/language/text_motion when a model was trained
+/// there, else the bundled assets/language/text_motion, else data/language/text_motion (so a
+/// missing model is reported under the path train_text_motion writes by default).
+std::filesystem::path DefaultStyleModelDir();
+
+/// The command that trains the default model (for error messages and docs).
+std::string TrainStyleModelCommand();
+
 /// Training settings of train_text_motion (configs/language/text_motion.json).
 struct MotionTextTrainConfig {
   MotionTextModelConfig model;               ///< Network sizes.

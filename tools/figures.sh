@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# Regenerates every figure the README quotes, from the bundled policies and models, into one
+# JSON file (figures.json), and with --write puts them where the repository keeps them: each
+# policy's eval.json (with the checkpoint's sha256) and the README block between
+# <!-- figures:begin --> and <!-- figures:end -->.
+#
+#   tools/figures.sh [--out DIR] [--write] [--quick]
+#
+# --quick runs 10 trials / 2 story seeds / no retrieval instead of 100 / 10 (a smoke test; its
+# figures are not the README's). Every command's seed is fixed, so a rerun on the same machine
+# reproduces the figures; another CPU may move them slightly (float kernels differ).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BIN="${SIMS_BIN:-$ROOT/build/bin}"
+OUT="$ROOT/runs/figures"
+WRITE=0
+TRIALS=100
+SEEDS=10
+RETRIEVAL=1
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --out) OUT="$2"; shift 2 ;;
+    --write) WRITE=1; shift ;;
+    --quick) TRIALS=10; SEEDS=2; RETRIEVAL=0; shift ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    *) echo "figures.sh: unknown argument '$1' (expected --out DIR, --write, --quick)" >&2; exit 2 ;;
+  esac
+done
+for tool in eval_policy run_story text_to_style; do
+  [ -x "$BIN/$tool" ] || { echo "figures.sh: $BIN/$tool missing: run bash cmake/build.sh first" >&2; exit 1; }
+done
+cd "$ROOT"
+mkdir -p "$OUT"
+POLICIES=assets/policies/policies.json
+EVAL_SEED=777
+STORY=assets/stories/tired_evening.json
+start=$(date +%s)
+step() { echo "[figures $(( $(date +%s) - start )) s] $*" >&2; }
+
+# 1. Every bundled policy: eval_policy, N trials, seed 777 (held-out objects for object skills).
+skills=$(python3 -c "import json,sys; print(' '.join(json.load(open(sys.argv[1]))['policies']))" "$POLICIES")
+for skill in $skills; do
+  ckpt="assets/policies/$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['policies'][sys.argv[2]])" "$POLICIES" "$skill")"
+  step "eval_policy $skill ($TRIALS trials, seed $EVAL_SEED)"
+  "$BIN/eval_policy" --checkpoint "$ckpt" --trials "$TRIALS" --seed "$EVAL_SEED" \
+    --out "$OUT/eval_$skill.json" --log-level warn > /dev/null
+done
+
+# 2. The main command's story over seeds 0..SEEDS-1.
+for ((s = 0; s < SEEDS; ++s)); do
+  step "run_story $STORY --seed $s"
+  "$BIN/run_story" "$STORY" --seed "$s" --out "$OUT/story_seed$s" --log-level warn > /dev/null
+done
+
+# 3. Caption retrieval of the bundled motion-text model, dev and test paraphrase sets apart.
+if [ "$RETRIEVAL" = 1 ] && [ ! -f data/language/text_motion/model.json ] &&
+   [ ! -f assets/language/text_motion/model.json ]; then
+  step "no motion-text model (data/ or assets/language/text_motion): retrieval skipped"
+  RETRIEVAL=0
+fi
+if [ "$RETRIEVAL" = 1 ]; then
+  for set in dev test; do
+    file="configs/language/${set}_paraphrases.json"
+    [ -f "$file" ] || continue
+    step "text_to_style --eval $file"
+    "$BIN/text_to_style" --eval "$file" --json > "$OUT/retrieval_$set.json"
+  done
+fi
+
+# 4. One JSON with everything, commands and seeds included.
+python3 - "$OUT" "$skills" "$TRIALS" "$SEEDS" "$EVAL_SEED" "$STORY" <<'PY'
+import glob, json, os, sys
+out, skills, trials, seeds, eval_seed, story = sys.argv[1:7]
+fig = {"policies": {}, "story": {}, "retrieval": {}}
+for skill in skills.split():
+    e = json.load(open(os.path.join(out, f"eval_{skill}.json")))
+    fig["policies"][skill] = {k: e[k] for k in (
+        "skill", "scene", "trials", "seed", "success_rate", "fall_rate", "contact_error",
+        "time_to_success_s", "checkpoint", "checkpoint_sha256") if k in e}
+    fig["policies"][skill]["command"] = (
+        f"eval_policy --checkpoint {e['checkpoint']} --trials {trials} --seed {eval_seed}")
+done, total, per_seed = 0, 0, []
+for s in range(int(seeds)):
+    r = json.load(open(os.path.join(out, f"story_seed{s}", "result.json")))
+    k = r["keyframes"]
+    ok = sum(1 for x in k if x.get("success"))
+    per_seed.append({"seed": s, "keyframes": len(k), "succeeded": ok, "falls": r.get("falls", 0)})
+    done += ok
+    total += len(k)
+fig["story"] = {"script": story, "seeds": int(seeds), "keyframes": total, "succeeded": done,
+                "per_seed": per_seed, "command": f"run_story {story} --seed S (S = 0..{int(seeds)-1})"}
+for path in sorted(glob.glob(os.path.join(out, "retrieval_*.json"))):
+    name = os.path.basename(path)[len("retrieval_"):-len(".json")]
+    r = json.load(open(path))
+    fig["retrieval"][name] = {"correct": r["correct"], "total": r["total"],
+                              "accuracy": r["accuracy"],
+                              "command": f"text_to_style --eval configs/language/{name}_paraphrases.json"}
+json.dump(fig, open(os.path.join(out, "figures.json"), "w"), indent=1, sort_keys=True)
+PY
+step "wrote $OUT/figures.json"
+
+# 5. --write: bundled eval files and the README block.
+if [ "$WRITE" = 1 ]; then
+  for skill in $skills; do
+    dir="$(dirname "$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['policies'][sys.argv[2]])" "$POLICIES" "$skill")")"
+    cp "$OUT/eval_$skill.json" "assets/policies/$dir/eval.json"
+  done
+  python3 - "$OUT/figures.json" README.md <<'PY'
+import json, sys
+fig = json.load(open(sys.argv[1]))
+lines = ["<!-- figures:begin (tools/figures.sh --write; do not edit by hand) -->", "",
+         "| skill | evaluation (`eval_policy`, trials, seed) | success | falls | mean contact error | checkpoint sha256 |",
+         "|---|---|---|---|---|---|"]
+for skill, p in sorted(fig["policies"].items()):
+    lines.append(f"| {skill} | {p['scene']}, {p['trials']} trials, seed {p['seed']} | "
+                 f"{100 * p['success_rate']:.0f} % | {100 * p['fall_rate']:.0f} % | "
+                 f"{p['contact_error']:.2f} m | `{p['checkpoint_sha256'][:12]}` |")
+s = fig["story"]
+lines += ["", f"Main story (`{s['script']}`): {s['succeeded']} of {s['keyframes']} keyframes succeed "
+          f"over seeds 0–{s['seeds'] - 1} (per seed: "
+          + ", ".join(f"{x['succeeded']}/{x['keyframes']}" for x in s["per_seed"]) + ")."]
+for name, r in sorted(fig["retrieval"].items()):
+    lines.append(f"Caption retrieval, {name} paraphrases: {r['correct']}/{r['total']}.")
+lines += ["", "<!-- figures:end -->"]
+text = open(sys.argv[2]).read()
+begin, end = text.find("<!-- figures:begin"), text.find("<!-- figures:end -->")
+if begin < 0 or end < 0:
+    sys.exit("README.md: expected a <!-- figures:begin --> ... <!-- figures:end --> block")
+text = text[:begin] + "\n".join(lines) + text[end + len("<!-- figures:end -->"):]
+open(sys.argv[2], "w").write(text)
+PY
+  step "wrote assets/policies/*/eval.json and the README figures block"
+fi
