@@ -12,8 +12,8 @@
 #include "sims/learning/trainer.h"
 #include "sims/scene/loaders.h"
 #include "sims/task/object_skill.h"
-#include "sims/task/unified.h"
-#include "sims/task/walk.h"
+#include "sims/task/unified/unified.h"
+#include "sims/task/walk/walk.h"
 
 namespace sims::eval {
 
@@ -132,15 +132,13 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   task::SkillConfig& sc = rc.skill;
   const int n_env = o.num_envs > 0 ? o.num_envs : std::min(o.trials, 16);
 
-  // Evaluation settings: standing starts, held-out objects, fixed walk targets 3–5 m away.
-  sc.held_out_objects = o.held_out;
+  // Evaluation settings: standing starts, held-out objects, and the skill's own (walk: fixed
+  // targets 3–5 m away).
+  const task::SkillInfo& info = task::FindSkill(sc.skill);
+  sc.object.held_out_objects = o.held_out;
   sc.reference_init_prob = 0;
   if (!sc.style_conditioned) sc.motion.manifest.clear();
-  if (sc.skill == "walk") {
-    sc.target_min_distance = 3.0;
-    sc.target_max_distance = 5.0;
-    sc.resample_target_on_success = false;
-  }
+  if (info.configure_eval) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
   ec.num_envs = n_env;
   ec.seed = o.seed;
@@ -150,9 +148,11 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   std::shared_ptr<const scene::Scene> scene;
   task::ContactPlan plan;
   if (!o.scene_plan.empty()) {
-    if (sc.skill != "unified")
+    if (!info.traits.contact_steps)
       ThrowInputError(o.checkpoint.string(), "extra.skill.skill",
-                      "a 'unified' policy to run a ScenePlan (--scene-plan)",
+                      "a policy of a chain-of-contacts skill (" +
+                          SkillNames([](const SkillTraits& t) { return t.contact_steps; }) +
+                          ") to run a ScenePlan (--scene-plan)",
                       "a '" + sc.skill + "' policy");
     auto loaded = task::LoadScenePlanRef(o.scene_plan, o.partnet_root);
     scene = loaded.scene;

@@ -1,4 +1,4 @@
-// Walk: the reference skill. Copy this file to write a new one.
+// Walk: the reference skill. Copy this folder to write a new one (README "Add a skill").
 //
 // Goal: the pelvis reaches a target point on free floor, moving at about target_speed, facing
 // the way it goes, and then stands still (SIMS supplementary):
