@@ -18,7 +18,7 @@
 #include "sims/sim/env.h"
 #include "sims/sim/features.h"
 #include "sims/sim/scene_physics.h"
-#include "sims/task/object_skill.h"
+#include "sims/task/skill.h"
 
 namespace sims::fsm {
 
@@ -138,9 +138,7 @@ struct StoryRunner::Impl {
   double GoalError(const std::string& skill, const task::InstructionTarget& target) const {
     if (SkillTraitsOf(skill).navigates)
       return (env->pose(0).root_pos.head<2>() - target.point.head<2>()).norm();
-    if (auto* obj = dynamic_cast<const task::ObjectSkill*>(skills.at(skill).get()))
-      return obj->goal_error(0);
-    return 0.0;
+    return skills.at(skill)->goal_error(View());
   }
 
   enum class Outcome { kSuccess, kTimeout, kFall, kCannotStart };

@@ -70,6 +70,8 @@ void Skill::SetStyleVector(int env_id, const Eigen::VectorXf& z) {
 
 bool Skill::BeginInstruction(const sim::EnvView&, const InstructionTarget&) { return false; }
 
+double Skill::goal_error(const sim::EnvView&) const { return 0.0; }
+
 void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
   const auto& clips = ReferenceClips();
   const auto* lib = context_.motions.get();

@@ -103,6 +103,8 @@ class ObjectSkill : public Skill {
   void SetObjectOverride(int env_id, int k);
   /// The distance the success test compares with its threshold at the last step (m).
   double goal_error(int env_id) const { return error_[env_id]; }
+  /// goal_error(view.env_id).
+  double goal_error(const sim::EnvView& view) const override { return error_[view.env_id]; }
   /// Consecutive steps the success condition has held.
   int hold(int env_id) const { return hold_[env_id]; }
   /// Net contact force on the humanoid (N) after the last physics step of `view`.

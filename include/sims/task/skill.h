@@ -148,6 +148,9 @@ class Skill : public sim::TaskHook {
   /// the character's current state without resetting it. Returns false when the skill cannot
   /// pursue that target (e.g. an object without the part it needs).
   virtual bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target);
+  /// The distance (m) env view.env_id's success test compares with its threshold, for
+  /// evaluation and story metrics; 0 for a skill without one.
+  virtual double goal_error(const sim::EnvView& view) const;
   /// The configuration.
   const SkillConfig& config() const { return config_; }
   /// The context.

@@ -93,6 +93,10 @@ bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarg
   return true;
 }
 
+double WalkSkill::goal_error(const sim::EnvView& view) const {
+  return (target_[view.env_id] - view.pose->root_pos.head<2>()).norm();
+}
+
 double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& root,
                          const Eigen::Vector2d& velocity, const Eigen::Vector2d& prev_velocity,
                          const Eigen::Vector2d& facing, double target_speed) {
