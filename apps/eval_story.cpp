@@ -1,5 +1,6 @@
 // eval_story: SIMS Table 2 protocol over generated stories (success rate, contact error,
-// success steps, penetration, foot sliding, FID, APD); prints JSON and writes --out.
+// success steps, penetration, foot sliding, FID, APD); prints JSON and writes --out. Stories run
+// through run_story's pipeline (story/story.h), captions → style z included.
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -8,12 +9,12 @@
 #include "sims/core/config.h"
 #include "sims/core/environment.h"
 #include "sims/core/paths.h"
-#include "sims/eval/story_eval.h"
+#include "sims/story/story_eval.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Evaluate stories per difficulty (SIMS Table 2 protocol)"};
-  sims::eval::StoryEvalOptions o;
-  std::string policies, themes,
+  sims::story::StoryEvalOptions o;
+  std::string policies, themes, outputs,
       reference = sims::DataPath("motions/synthetic/manifest.json").string(), out;
   sims::AppFlags flags;
   app.add_option("--policies", policies, "policy set (default assets/policies/policies.json)");
@@ -23,15 +24,21 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--difficulties", o.difficulties, "simple mid hard");
   app.add_option("--seed", o.seed, "seed of story 0");
+  app.add_option("--style-model", o.style_model,
+                 "motion-text model folder for caption -> z (default data/language/text_motion "
+                 "when present)");
+  app.add_option("--outputs", outputs,
+                 "also write each story's run_story outputs to DIR/<difficulty>_<i>");
   app.add_option("--out", out, "write the JSON report here too");
   sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {
     o.policies = policies;
     o.themes = themes;
+    o.outputs_dir = outputs;
     o.environment = sims::InstalledEnvironment();  // $SIMS_LLM_* for planning the themes
     if (!reference.empty() && std::filesystem::exists(reference)) o.reference_manifest = reference;
-    const auto r = sims::eval::EvaluateStories(o);
+    const auto r = sims::story::EvaluateStories(o);
     if (!out.empty()) sims::WriteJsonFile(out, r);
     std::cout << r.dump(2) << std::endl;
     return 0;

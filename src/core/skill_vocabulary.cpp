@@ -13,7 +13,6 @@ std::deque<SkillTraits> BuiltinSkills() {
   SkillTraits walk;
   walk.name = "walk";
   walk.description = "walk to a target on free floor in a style, then stand still";
-  walk.verbs = {"walk", "walks", "go", "goes", "move"};
   walk.scripted = true;
   walk.navigates = true;
   walk.flat_scene = true;  // trained on an empty floor: obstacles are the navigation's job
@@ -24,7 +23,6 @@ std::deque<SkillTraits> BuiltinSkills() {
   SkillTraits sit;
   sit.name = "sit";
   sit.description = "sit down on a chair, armchair, sofa or stool";
-  sit.verbs = {"sits", "seat", "seated"};
   sit.scripted = sit.affordance = sit.needs_object = true;
   sit.follow_up = "getup";
   v.push_back(sit);
@@ -32,7 +30,6 @@ std::deque<SkillTraits> BuiltinSkills() {
   SkillTraits lie;
   lie.name = "lie";
   lie.description = "lie down on a bed with the head on a pillow";
-  lie.verbs = {"lies", "lay", "bed"};
   lie.scripted = lie.affordance = lie.needs_object = true;
   lie.follow_up = "getup";
   v.push_back(lie);
@@ -40,7 +37,6 @@ std::deque<SkillTraits> BuiltinSkills() {
   SkillTraits reach;
   reach.name = "reach";
   reach.description = "touch a point on a table, desk, cabinet, shelf or wardrobe with one hand";
-  reach.verbs = {"touch", "touches", "grab", "pick"};
   reach.scripted = reach.affordance = reach.needs_object = reach.hand_target = true;
   v.push_back(reach);
 

@@ -26,6 +26,7 @@ void PpoConfig::Validate() const {
   Require(bounds_coef >= 0, "bounds_coef", "a non-negative weight");
   Require(grad_norm >= 0, "grad_norm", "a non-negative norm (0 = no clipping)");
   Require(obs_clip > 0, "obs_clip", "a positive clip");
+  Require(warm_start_obs_count > 0, "warm_start_obs_count", "a positive sample count");
 }
 
 void AmpConfig::Validate() const {
@@ -36,6 +37,9 @@ void AmpConfig::Validate() const {
   Require(replay_keep_prob >= 0 && replay_keep_prob <= 1, "replay_keep_prob", "a probability");
   Require(demo_pool_size > 0, "demo_pool_size", "a positive count");
   Require(batch_size > 0, "batch_size", "a positive count");
+  Require(demo_refresh >= 0 && demo_refresh <= demo_pool_size, "demo_refresh",
+          "a count in [0, demo_pool_size]");
+  Require(grad_norm >= 0, "grad_norm", "a non-negative norm (0 = no clipping)");
   Require(mismatch_fraction >= 0 && mismatch_fraction < 1, "mismatch_fraction",
           "a fraction in [0, 1)");
 }

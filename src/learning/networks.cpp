@@ -10,7 +10,49 @@ torch::Tensor Activate(const torch::Tensor& x, const std::string& name) {
   if (name == "elu") return torch::elu(x);
   return torch::tanh(x);
 }
+
+// OpenBLAS blocks a GEMM's inner dimension K in panels of GEMM_Q and splits the last
+// remainder in (Q, 2Q) in two — rounded to its M unroll in the one-thread driver, halved in the
+// threaded one — so for K > Q the partial sums, and the last bits of the product, depend on the
+// thread count unless K is a multiple of 2 × unroll (measured: K > 320 and K % 32 != 0 differ
+// between 1 and 2 threads on Debian's 0.3.21). Inputs up to this width need one panel.
+constexpr int64_t kSinglePanelWidth = 256;
+constexpr int64_t kPanelAlign = 64;  // 2 × the largest sgemm M unroll (32), a divisor of Q
+
+// y = x W^T + b with K padded by zero columns to a multiple of kPanelAlign: the zeros add
+// exact zeros, so the value is the same linear map, and its rounding no longer depends on how
+// many threads the BLAS uses. The parameters keep their shapes (checkpoints load as before);
+// the gradient of W is the slice of the padded weight's gradient.
+torch::Tensor ThreadStableLinear(torch::nn::Linear& layer, const torch::Tensor& x) {
+  const int64_t k = x.size(-1);
+  if (k <= kSinglePanelWidth || k % kPanelAlign == 0) return layer->forward(x);
+  const int64_t pad = kPanelAlign - k % kPanelAlign;
+  const auto x_pad = torch::constant_pad_nd(x, {0, pad});
+  const auto w_pad = torch::constant_pad_nd(layer->weight, {0, pad});
+  return torch::nn::functional::linear(x_pad, w_pad, layer->bias);
+}
 }  // namespace
+
+FixedOrderMoments ColumnMoments(const torch::Tensor& x) {
+  const auto xd = x.to(torch::kFloat64).contiguous();
+  const int64_t d = xd.dim() == 1 ? 1 : xd.size(-1);
+  const int64_t rows = d > 0 ? xd.numel() / d : 0;
+  FixedOrderMoments m;
+  m.count = static_cast<double>(rows);
+  m.sum = torch::zeros({d}, torch::kFloat64);
+  m.sum_sq = torch::zeros({d}, torch::kFloat64);
+  const double* p = xd.data_ptr<double>();
+  double* s = m.sum.data_ptr<double>();
+  double* q = m.sum_sq.data_ptr<double>();
+  // A plain row loop: torch's reductions split long ones across threads (grain 32768), which
+  // makes their rounding depend on the thread count.
+  for (int64_t r = 0; r < rows; ++r, p += d)
+    for (int64_t j = 0; j < d; ++j) {
+      s[j] += p[j];
+      q[j] += p[j] * p[j];
+    }
+  return m;
+}
 
 int64_t ObsWidth(const std::vector<sim::ObsSegment>& segments) {
   int64_t end = 0;
@@ -26,10 +68,10 @@ RunningMeanStdImpl::RunningMeanStdImpl(int64_t size, double clip) : clip_(clip) 
 
 void RunningMeanStdImpl::Update(const torch::Tensor& x) {
   torch::NoGradGuard guard;
-  const auto xd = x.to(torch::kFloat64).reshape({-1, mean_.size(0)});
-  const double n = static_cast<double>(xd.size(0));
-  if (n == 0) return;
-  Merge(n, xd.mean(0), xd.var(0, /*unbiased=*/false));
+  const auto m = ColumnMoments(x.reshape({-1, mean_.size(0)}));
+  if (m.count == 0) return;
+  const auto mean = m.sum / m.count;
+  Merge(m.count, mean, torch::clamp_min(m.sum_sq / m.count - mean.pow(2), 0.0));
 }
 
 void RunningMeanStdImpl::Merge(double n, const torch::Tensor& batch_mean,
@@ -43,6 +85,15 @@ void RunningMeanStdImpl::Merge(double n, const torch::Tensor& batch_mean,
   mean_.copy_(new_mean);
   var_.copy_(m2 / total);
   count_.copy_(total);
+}
+
+int64_t RunningMeanStdImpl::Soften(double count, double constant_var) {
+  torch::NoGradGuard guard;
+  count_.clamp_max_(count);
+  const auto constant = var_ < constant_var;
+  mean_.masked_fill_(constant, 0.0);
+  var_.masked_fill_(constant, 1.0);
+  return constant.sum().item<int64_t>();
 }
 
 torch::Tensor RunningMeanStdImpl::Normalize(const torch::Tensor& x) const {
@@ -73,7 +124,7 @@ MlpImpl::MlpImpl(int64_t in, const std::vector<int>& hidden, int64_t out,
 
 torch::Tensor MlpImpl::forward(torch::Tensor x) {
   for (size_t i = 0; i < layers_.size(); ++i) {
-    x = layers_[i]->forward(x);
+    x = ThreadStableLinear(layers_[i], x);
     if (!(final_linear_ && i + 1 == layers_.size())) x = Activate(x, activation_);
   }
   return x;

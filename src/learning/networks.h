@@ -24,6 +24,10 @@ class RunningMeanStdImpl : public torch::nn::Module {
   /// Folds a batch given by its size, mean and population variance (float64 [size]); what
   /// Update() does after computing them, and what ranks do with all-reduced moments.
   void Merge(double n, const torch::Tensor& batch_mean, const torch::Tensor& batch_var);
+  /// Caps the sample count at `count` (later batches then weigh in at once) and restarts the
+  /// inputs whose variance is below `constant_var` at mean 0, variance 1 (a warm start from
+  /// another task, where those inputs never varied). Returns how many inputs restarted.
+  int64_t Soften(double count, double constant_var);
   /// Feature count.
   int64_t size() const { return mean_.size(0); }
   /// (x − mean) / sqrt(var + eps), clamped.
@@ -38,6 +42,16 @@ class RunningMeanStdImpl : public torch::nn::Module {
   double clip_;
 };
 TORCH_MODULE(RunningMeanStd);
+
+/// Per-column count, sum and sum of squares in float64.
+struct FixedOrderMoments {
+  double count = 0;      ///< Rows.
+  torch::Tensor sum;     ///< [d] column sums.
+  torch::Tensor sum_sq;  ///< [d] column sums of squares.
+};
+/// Moments of x viewed as [rows, last dim] (a 1-d x is one column), summed row by row in a
+/// fixed order so the result is the same at any thread count.
+FixedOrderMoments ColumnMoments(const torch::Tensor& x);
 
 /// A plain MLP with a configurable activation; the last layer is linear.
 class MlpImpl : public torch::nn::Module {

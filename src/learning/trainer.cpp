@@ -140,6 +140,31 @@ struct Trainer::Impl {
   /// Reads WriteLearnerState() output; `source` names it in errors.
   void ReadLearnerState(torch::serialize::InputArchive& archive, const std::string& source);
 
+  // The demo pool is refreshed in blocks of amp.demo_refresh windows, block j (after iteration
+  // j) cycling through the pool and drawn from its own stream Rng(seed, j): the pool at any
+  // iteration is then a function of the iteration alone, and a resumed run rebuilds it from
+  // the last pool's worth of blocks instead of storing it.
+  void RefreshDemoBlock(int64_t j) {
+    const int64_t k = cfg.amp.demo_refresh, size = demo_pool.size(0);
+    Rng block_rng = Rng::ForEnv(cfg.seed ^ 0x6A09E667F3BCC909ull, static_cast<int>(j));
+    std::vector<float> windows(static_cast<size_t>(k * amp_dim));
+    std::vector<int> styles(static_cast<size_t>(k));
+    demo->Sample(static_cast<int>(k), block_rng, windows.data(), styles.data());
+    float* pool = demo_pool.data_ptr<float>();
+    int64_t* pool_styles = demo_pool_styles.data_ptr<int64_t>();
+    for (int64_t i = 0; i < k; ++i) {
+      const int64_t row = ((j - 1) * k + i) % size;
+      std::memcpy(pool + row * amp_dim, windows.data() + i * amp_dim, sizeof(float) * amp_dim);
+      pool_styles[row] = styles[i];
+    }
+  }
+  void RebuildDemoPool() {
+    if (!use_amp || cfg.amp.demo_refresh <= 0) return;
+    const int64_t blocks = (demo_pool.size(0) + cfg.amp.demo_refresh - 1) / cfg.amp.demo_refresh;
+    for (int64_t j = std::max<int64_t>(1, iteration - blocks + 1); j <= iteration; ++j)
+      RefreshDemoBlock(j);
+  }
+
   // Sum over ranks, in place (contiguous float32 or float64 tensors).
   void AllReduce(torch::Tensor& t) {
     if (!comm) return;
@@ -154,11 +179,11 @@ struct Trainer::Impl {
   void UpdateNorm(RunningMeanStd& norm, const torch::Tensor& x) {
     if (!comm) return norm->Update(x);
     torch::NoGradGuard guard;
+    const auto local = ColumnMoments(x.reshape({-1, norm->size()}));
     const int64_t d = norm->size();
-    const auto xd = x.to(torch::kFloat64).reshape({-1, d});
-    auto moments = torch::cat({torch::full({1}, static_cast<double>(xd.size(0)), torch::kFloat64),
-                               xd.sum(0), xd.pow(2).sum(0)})
-                       .contiguous();
+    auto moments =
+        torch::cat({torch::full({1}, local.count, torch::kFloat64), local.sum, local.sum_sq})
+            .contiguous();
     AllReduce(moments);
     const double count = moments[0].item<double>();
     if (count <= 0) return;
@@ -206,14 +231,13 @@ struct Trainer::Impl {
     if (!disc_params.empty()) ScatterGrads(disc_params, disc_grads);
   }
 
-  // Mean and unbiased standard deviation of a tensor over all ranks.
+  // Mean and unbiased standard deviation of a tensor (over all ranks), summed in a fixed
+  // order so that they do not depend on the thread count.
   std::pair<double, double> GlobalMeanStd(const torch::Tensor& x) {
-    const auto xd = x.to(torch::kFloat64);
-    auto m = torch::stack({torch::full({}, static_cast<double>(xd.numel()), torch::kFloat64),
-                           xd.sum(), xd.pow(2).sum()})
-                 .contiguous();
-    AllReduce(m);
-    const double n = m[0].item<double>(), sum = m[1].item<double>(), sq = m[2].item<double>();
+    const auto local = ColumnMoments(x.reshape({-1}));
+    double m[] = {local.count, local.sum.item<double>(), local.sum_sq.item<double>()};
+    if (comm) comm->AllReduceSum(m, 3);
+    const double n = m[0], sum = m[1], sq = m[2];
     const double mean = sum / std::max(n, 1.0);
     const double var = n > 1 ? std::max(sq - n * mean * mean, 0.0) / (n - 1) : 0.0;
     return {mean, std::sqrt(var)};
@@ -503,12 +527,8 @@ Trainer::Impl::Batch Trainer::Impl::PrepareBatch(Timings* timing) {
   const auto ret_f = returns.reshape({T * N});
   b.advantages = adv.reshape({T * N});
   if (ppo.normalize_advantage) {
-    if (comm) {
-      const auto [mean, std] = GlobalMeanStd(b.advantages);
-      b.advantages = (b.advantages - mean) / (std + 1e-8);
-    } else {
-      b.advantages = (b.advantages - b.advantages.mean()) / (b.advantages.std() + 1e-8);
-    }
+    const auto [mean, std] = GlobalMeanStd(b.advantages);
+    b.advantages = (b.advantages - mean) / (std + 1e-8);
   }
   b.returns = ppo.normalize_value ? value_norm->Normalize(ret_f.unsqueeze(-1)).squeeze(-1) : ret_f;
   timing->ppo += Since(t_phase);
@@ -593,8 +613,12 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
     const auto mask = (env_id >= first).logical_and(env_id < first + N);
     return (global.div(n_total, "floor") * N + env_id - first).masked_select(mask);
   };
-  const auto params = AllParameters();
   const auto ac_params = ac->parameters();
+  // Each network's gradient is clipped on its own: one norm over all three let the critic's
+  // (5× weighted) or the discriminator's gradient shrink the actor's step.
+  std::vector<torch::Tensor> actor_params, critic_params;
+  for (const auto& p : ac->named_parameters())
+    (p.key().rfind("actor", 0) == 0 ? actor_params : critic_params).push_back(p.value());
   const auto disc_params = use_amp ? disc->parameters() : std::vector<torch::Tensor>{};
   for (int epoch = 0; epoch < ppo.mini_epochs; ++epoch) {
     const auto perm = Permutation(rng, total);
@@ -619,7 +643,12 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
       t_phase = Clock::now();
       if (use_amp) StartReduce(disc_params, &disc_grads);
       FinishReduce(ac_params, disc_params);
-      if (ppo.grad_norm > 0) torch::nn::utils::clip_grad_norm_(params, ppo.grad_norm);
+      if (ppo.grad_norm > 0) {
+        torch::nn::utils::clip_grad_norm_(actor_params, ppo.grad_norm);
+        torch::nn::utils::clip_grad_norm_(critic_params, ppo.grad_norm);
+      }
+      if (use_amp && cfg.amp.grad_norm > 0)
+        torch::nn::utils::clip_grad_norm_(disc_params, cfg.amp.grad_norm);
       optim->step();
       timing->ppo += Since(t_phase);
       ++u.steps;
@@ -648,6 +677,7 @@ IterationStats Trainer::RunIteration() {
   }
   m.UpdateNorm(m.obs_norm, batch.obs);
   ++m.iteration;
+  if (m.use_amp && m.cfg.amp.demo_refresh > 0) m.RefreshDemoBlock(m.iteration);
 
   // ---- statistics -------------------------------------------------------------------------
   // Sums over all ranks, so every rank (and rank 0's log) reports the whole run's figures.
@@ -826,6 +856,7 @@ void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
   const auto counters = ReadTensor(archive, "counters");
   m.iteration = counters[0].item<int64_t>();
   m.samples = counters[1].item<int64_t>();
+  RebuildDemoPool();
 }
 
 void Trainer::SaveCheckpoint(const std::filesystem::path& path) const {
@@ -925,6 +956,9 @@ void Trainer::InitFromPolicy(const std::filesystem::path& path) {
                       meta.at("obs_dim").dump() + " / " + meta.at("network").dump());
     LoadPolicyWeights(archive, m.ac, m.obs_norm);
   });
+  const int64_t restarted = m.obs_norm->Soften(m.cfg.ppo.warm_start_obs_count, 1e-6);
+  spdlog::info("{}: observation normaliser counts as {} samples; {} inputs constant there restart",
+               path.string(), m.cfg.ppo.warm_start_obs_count, restarted);
 }
 
 void Trainer::ExportPolicy(const std::filesystem::path& path, const std::string& extra_json) const {

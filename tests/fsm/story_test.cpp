@@ -7,7 +7,6 @@
 #include "common/test_util.h"
 #include "common/tiny_training.h"
 #include "sims/core/error.h"
-#include "sims/fsm/story_job.h"
 #include "sims/learning/train_run.h"
 #include "sims/scene/builtin.h"
 #include "sims/scene/loaders.h"
@@ -213,84 +212,6 @@ TEST(InstructionTest, ScenePlanStepsBecomeWalkAndUnifiedInstructions) {
   ASSERT_TRUE(in[1].target.contact_step);
   EXPECT_EQ(in[1].target.contact_step->mask(), 1u << sim::kCjPelvis);
   EXPECT_NE(in[1].caption.find("pelvis on"), std::string::npos) << in[1].caption;
-}
-
-TEST(StoryJobTest, RunsAUniHsiScenePlan) {
-  const auto dir = sims::testing::TempDir("story_sceneplan");
-  StoryJob job;
-  job.scene_plan = sims::testing::TestData("scene/sceneplan.json").string() + "#0000";
-  job.partnet_root = sims::testing::TestData("scene/partnet").string();
-  job.policies = TinyPolicySet().string();  // walk only: the contact step has no policy
-  job.out_dir = dir / "out";
-  job.options.walk_timeout_s = 1.0;
-  const auto r = RunStoryJob(job);
-  ASSERT_EQ(r["keyframes"].size(), 2u);
-  EXPECT_EQ(r["keyframes"][0]["skill"], "walk");
-  EXPECT_EQ(r["keyframes"][1]["skill"], "unified");
-  EXPECT_NE(r["keyframes"][1]["note"].get<std::string>().find("no usable policy for 'unified'"),
-            std::string::npos);
-  EXPECT_EQ(r["planner"], "sceneplan");
-  const auto plan = ReadJsonFile(dir / "out" / "plan.json");
-  EXPECT_EQ(plan["id"], "0000");
-  EXPECT_TRUE(plan["plan"].contains("contact_pairs"));
-}
-
-TEST(StoryJobTest, InstructionSentenceBecomesAKeyframe) {
-  const auto j = InstructionToScriptJson("sit on the armchair with legs crossed");
-  EXPECT_EQ(j["keyframes"][0]["skill"], "sit");
-  EXPECT_EQ(j["keyframes"][0]["furniture"], "armchair");
-  EXPECT_THROW(InstructionToScriptJson("the weather is nice"), Error);
-}
-
-TEST(StoryJobTest, WritesEveryOutputOrNothing) {
-  const auto dir = sims::testing::TempDir("story");
-  StoryJob job;
-  job.instruction = "walk to the chair";
-  job.scene = "chair";
-  job.policies = TinyPolicySet().string();
-  job.out_dir = dir / "out";
-  job.options.walk_timeout_s = 1.0;
-  const auto result = RunStoryJob(job);
-  for (const char* f : {"result.json", "motion.json", "motion.bvh", "scene.glb", "index.html",
-                        "story.txt", "plan.json", "config.json"})
-    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
-  EXPECT_FALSE(std::filesystem::exists(dir / "out.partial"));
-  const auto saved = ReadJsonFile(dir / "out" / "result.json");
-  EXPECT_EQ(saved["keyframes"].size(), result["keyframes"].size());
-  EXPECT_EQ(saved["keyframes"][0]["skill"], "walk");
-
-  // A skill without a policy: by default its keyframe fails with a note and the story runs.
-  StoryJob lenient = job;
-  lenient.out_dir = dir / "lenient";
-  lenient.instruction = "sit on the chair";  // no sit policy in the set
-  const auto sat = RunStoryJob(lenient);
-  ASSERT_FALSE(sat["keyframes"].empty());
-  EXPECT_EQ(sat["keyframes"].back()["skill"], "sit");
-  EXPECT_FALSE(sat["keyframes"].back()["success"].get<bool>());
-  EXPECT_NE(sat["keyframes"].back()["note"].get<std::string>().find("no usable policy for 'sit'"),
-            std::string::npos);
-
-  // Bad inputs: clear error, and no output directory left looking complete.
-  StoryJob bad = lenient;
-  bad.out_dir = dir / "bad";
-  bad.options.missing_policy_fails = false;  // strict
-  EXPECT_THROW(RunStoryJob(bad), Error);
-  std::ofstream(dir / "script.json")
-      << R"({"keyframes": [{"skill": "sit", "furniture": "spaceship"}]})";
-  bad.instruction.clear();
-  bad.input = (dir / "script.json").string();
-  EXPECT_THROW(RunStoryJob(bad), Error);
-  std::ofstream(dir / "missing.json") << R"({"policies": {"walk": "nowhere.pt"}})";
-  bad.input.clear();
-  bad.instruction = "walk to the chair";
-  bad.policies = (dir / "missing.json").string();
-  try {
-    RunStoryJob(bad);
-    FAIL();
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("policies.walk"), std::string::npos) << e.what();
-  }
-  EXPECT_FALSE(std::filesystem::exists(dir / "bad" / "result.json"));
 }
 
 }  // namespace

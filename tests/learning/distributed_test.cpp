@@ -130,9 +130,12 @@ TEST(CommunicatorTest, APeerThatLeavesEndsTheOtherRankWithAClearError) {
   const auto got = RunRanks<std::string>(
       2, "comm_dead",
       [](int rank, std::shared_ptr<Communicator> comm) -> std::string {
+        // One collective first, so that both ranks have finished joining (a peer that leaves
+        // during the handshake fails the join instead, which is another test's case).
+        float x = 1;
+        comm->AllReduceSum(&x, 1);
         if (rank == 1) return "";  // leaves: its process group is destroyed
         std::this_thread::sleep_for(std::chrono::milliseconds(200));
-        float x = 1;
         return ErrorOf([&] {
           for (int i = 0; i < 3; ++i) comm->AllReduceSum(&x, 1);
         });

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sims/core/parallel.h"
+
 namespace sims::learning {
 namespace {
 
@@ -37,6 +39,73 @@ TEST(NetworksTest, EncoderRoutesSegments) {
   ActorCritic ac(segs, 4, c);
   EXPECT_EQ(ac->Mean(torch::zeros({2, 24}), raw).sizes(), (std::vector<int64_t>{2, 4}));
   EXPECT_EQ(ac->Value(torch::zeros({2, 24}), raw).sizes(), (std::vector<int64_t>{2}));
+}
+
+// OpenBLAS splits a GEMM's inner dimension differently with one thread than with several once
+// it exceeds one panel (K > 320, K % 32 != 0 here); Mlp pads such inputs so that a layer's
+// output and gradients are bit-identical at any thread count. A batch this size makes OpenBLAS
+// use its threads; the widths cover a padded (600, 1050) and an unpadded (256) input.
+TEST(NetworksTest, MlpIsBitIdenticalAcrossThreadCounts) {
+  const int before = ThreadCount();
+  for (const int64_t in : {600, 1050, 256}) {
+    torch::manual_seed(3);
+    Mlp mlp(in, std::vector<int>{256, 128}, 4, "relu");
+    const auto x = torch::randn({1024, in});
+    std::vector<std::vector<torch::Tensor>> grads;
+    std::vector<torch::Tensor> outs;
+    for (const int threads : {1, 2}) {
+      SetThreadCount(threads);
+      mlp->zero_grad();
+      const auto y = mlp->forward(x);
+      y.pow(2).mean().backward();
+      outs.push_back(y.detach().clone());
+      grads.emplace_back();
+      for (const auto& p : mlp->parameters()) grads.back().push_back(p.grad().clone());
+    }
+    EXPECT_TRUE(torch::equal(outs[0], outs[1])) << "forward, input width " << in;
+    for (size_t i = 0; i < grads[0].size(); ++i)
+      EXPECT_TRUE(torch::equal(grads[0][i], grads[1][i])) << "gradient " << i << ", width " << in;
+  }
+  SetThreadCount(before);
+}
+
+// The normaliser's batch moments are summed row by row: torch's own sum splits a long reduction
+// across threads (grain 32768), which changes its last bits with the thread count.
+TEST(NormalizerTest, UpdateIsBitIdenticalAcrossThreadCounts) {
+  const int before = ThreadCount();
+  torch::manual_seed(4);
+  const auto x = torch::randn({70000, 1}) * 3.0 + 1.0;
+  std::vector<torch::Tensor> means, vars;
+  for (const int threads : {1, 2}) {
+    SetThreadCount(threads);
+    RunningMeanStd n(1);
+    n->Update(x);
+    means.push_back(n->named_buffers()["mean"].clone());
+    vars.push_back(n->named_buffers()["var"].clone());
+  }
+  EXPECT_TRUE(torch::equal(means[0], means[1]));
+  EXPECT_TRUE(torch::equal(vars[0], vars[1]));
+  EXPECT_NEAR(means[0].item<double>(), 1.0, 0.05);
+  EXPECT_NEAR(std::sqrt(vars[0].item<double>()), 3.0, 0.05);
+  SetThreadCount(before);
+}
+
+// A warm start keeps what the source task learnt but lets the new task's batches weigh in at
+// once, and restarts inputs that never varied there (they would sit at the clip bound).
+TEST(NormalizerTest, SoftenCapsTheCountAndRestartsConstantInputs) {
+  RunningMeanStd n(2);
+  auto x = torch::zeros({1000, 2});
+  x.select(1, 0).copy_(torch::linspace(-1.0, 1.0, 1000));  // column 1 stays 0
+  for (int i = 0; i < 100; ++i) n->Update(x);
+  EXPECT_EQ(n->Soften(10.0, 1e-6), 1);
+  auto buffers = n->named_buffers();
+  EXPECT_DOUBLE_EQ(buffers["count"].item<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(buffers["mean"][1].item<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(buffers["var"][1].item<double>(), 1.0);
+  EXPECT_NEAR(buffers["var"][0].item<double>(), 1.0 / 3.0, 1e-2) << "varied input kept";
+  // A new batch (column 1 now at 4) moves the mean almost all the way: 1000 / 1010.
+  n->Update(torch::full({1000, 2}, 4.0));
+  EXPECT_NEAR(n->named_buffers()["mean"][1].item<double>(), 4.0 * 1000.0 / 1010.0, 1e-9);
 }
 
 }  // namespace

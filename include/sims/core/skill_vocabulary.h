@@ -1,9 +1,12 @@
-// The skill vocabulary: every skill's name, verbs and the traits other modules act on (time-out
+// The skill vocabulary: every skill's name and the traits other modules act on (time-out
 // class, success hold, walk-like navigation, object binding, follow-up skill, which trained
 // policy serves it, ...). It is plain data in the lowest module so that the planner (which
 // never runs a skill and does not depend on task/) and the state machine, evaluation and task
 // registry all read one table and none of them compares skill names. task::SkillInfo binds an
 // entry to the skill's code (factory, training scene, params); task::RegisterSkill adds both.
+// The words naming a skill in scripts and sentences stay planner data: the aliases in
+// configs/planner/vocabulary.json (planner::Vocabulary::Validate checks its skills against
+// this table) and the fallback verbs in configs/planner/sentence.json, which resolve through them.
 #pragma once
 
 #include <deque>
@@ -20,11 +23,10 @@ enum class StoryTiming {
 
 /// What the rest of the framework knows about a skill without its code.
 struct SkillTraits {
-  std::string name;                ///< Registry key (walk, sit, lie, reach, getup, ...).
-  std::string description;         ///< One line for --help.
-  std::vector<std::string> verbs;  ///< Words naming it in free sentences ("sits", "touch").
-  bool scripted = false;           ///< A keyframe verb of planned scripts (the planner's skills).
-  bool affordance = false;         ///< Furniture categories list it among their affordances.
+  std::string name;             ///< Registry key (walk, sit, lie, reach, getup, ...).
+  std::string description;      ///< One line for --help.
+  bool scripted = false;        ///< A keyframe verb of planned scripts (the planner's skills).
+  bool affordance = false;      ///< Furniture categories list it among their affordances.
   bool navigates = false;       ///< Walk-like: the goal is a floor point (A* waypoints, xy error).
   bool needs_object = false;    ///< A placed instruction must bind a scene object.
   bool hand_target = false;     ///< The target names a hand and a height band (from the caption).

@@ -49,6 +49,10 @@ struct PpoConfig {
   bool normalize_advantage = true;  ///< (A − μ)/(σ + 1e-8) batch-wide.
   bool normalize_value = true;      ///< Critic predicts normalised returns.
   double obs_clip = 5.0;            ///< Normalised observations are clamped to ±obs_clip.
+  /// After --init-policy, the imported observation normaliser counts as this many samples, so
+  /// the new task's statistics take over within a few iterations (walk's ≈5 M would freeze
+  /// them); inputs constant in the source task restart at mean 0, variance 1.
+  double warm_start_obs_count = 4096;
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -67,6 +71,7 @@ struct PpoConfig {
     a->Visit(SIMS_NVP(normalize_advantage));
     a->Visit(SIMS_NVP(normalize_value));
     a->Visit(SIMS_NVP(obs_clip));
+    a->Visit(SIMS_NVP(warm_start_obs_count));
   }
   /// Checks ranges.
   void Validate() const;
@@ -87,7 +92,11 @@ struct AmpConfig {
   int replay_size = 32768;         ///< Replay buffer capacity (GPU: 200k).
   double replay_keep_prob = 0.01;  ///< Insert probability once the buffer is full.
   int demo_pool_size = 32768;      ///< Demo windows precomputed from the motion library.
-  int batch_size = 512;            ///< Demo samples per discriminator step (half replay negatives).
+  /// Demo windows redrawn per iteration, cycling through the pool, so a long run does not
+  /// re-see one fixed sample hundreds of times (0 = a fixed pool).
+  int demo_refresh = 0;
+  double grad_norm = 1.0;  ///< Discriminator gradient-norm clip, apart from the policy's (0 = off).
+  int batch_size = 512;    ///< Demo samples per discriminator step (half replay negatives).
   double mismatch_fraction =
       0.25;  ///< Conditional: demo windows paired with a wrong z as negatives.
 
@@ -107,6 +116,8 @@ struct AmpConfig {
     a->Visit(SIMS_NVP(replay_size));
     a->Visit(SIMS_NVP(replay_keep_prob));
     a->Visit(SIMS_NVP(demo_pool_size));
+    a->Visit(SIMS_NVP(demo_refresh));
+    a->Visit(SIMS_NVP(grad_norm));
     a->Visit(SIMS_NVP(batch_size));
     a->Visit(SIMS_NVP(mismatch_fraction));
   }

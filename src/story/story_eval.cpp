@@ -1,16 +1,14 @@
-#include "sims/eval/story_eval.h"
+#include "sims/story/story_eval.h"
 
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
 #include "sims/core/progress.h"
 #include "sims/eval/motion_metrics.h"
-#include "sims/fsm/instruction.h"
 #include "sims/motion/motion_library.h"
-#include "sims/planner/planner.h"
 #include "sims/sim/model_builder.h"
 
-namespace sims::eval {
+namespace sims::story {
 
 namespace {
 
@@ -31,11 +29,23 @@ Eigen::MatrixXd ReferenceFeatures(const std::filesystem::path& manifest) {
   const auto lib = motion::MotionLibrary::Load(manifest, humanoid);
   std::vector<Eigen::MatrixXd> parts;
   for (int i = 0; i < lib.num_clips(); ++i)
-    parts.push_back(PoseFeatures(io::RecordFromClip(lib.clip(i), 30.0), 3));
+    parts.push_back(eval::PoseFeatures(io::RecordFromClip(lib.clip(i), 30.0), 3));
   return Stack(parts);
 }
 
 }  // namespace
+
+StoryInput EvalStoryInput(const StoryEvalOptions& o, const nlohmann::json& themes,
+                          const std::string& difficulty, int index) {
+  StoryInput in;
+  in.theme = themes[index % themes.size()].get<std::string>();
+  in.difficulty = difficulty;
+  in.seed = o.seed + index;
+  in.scene = "";  // the protocol plans on the built-in layouts
+  in.style_model = o.style_model;
+  in.environment = o.environment;
+  return in;
+}
 
 nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
   const auto themes_path = o.themes.empty() ? ConfigPath("eval/story_themes.json") : o.themes;
@@ -61,30 +71,21 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
     int n = 0;
     std::vector<Eigen::MatrixXd> features;
     for (int i = 0; i < o.stories_per_difficulty; ++i) {
-      const std::string theme =
-          themes_json["themes"][i % themes_json["themes"].size()].get<std::string>();
-      nlohmann::json row = {{"difficulty", difficulty}, {"theme", theme}, {"seed", o.seed + i}};
+      const StoryInput input = EvalStoryInput(o, themes_json["themes"], difficulty, i);
+      const std::string& theme = input.theme;
+      nlohmann::json row = {{"difficulty", difficulty}, {"theme", theme}, {"seed", input.seed}};
       try {
-        planner::PlanRequest req;
-        req.theme = theme;
-        req.environment = o.environment;
-        req.difficulty = difficulty;
-        req.seed = o.seed + i;
-        const planner::Plan plan = planner::PlanStory(req);
-        auto scene = std::make_shared<const scene::Scene>(
-            planner::MaterializeLayout(plan.layout, planner::DefaultSceneLoader()));
-        story.seed = o.seed + i;
-        fsm::StoryRunner runner(scene, policies, story);
-        const scene::RayCaster caster(*scene);
-        const auto instructions = fsm::BuildInstructions(plan, *scene, caster);
-        io::MotionRecordBuilder recorder(runner.humanoid());
-        const auto result =
-            runner.Run(instructions, runner.DefaultStart(instructions), 0.0, &recorder);
-        const io::MotionRecord record = recorder.Finish();
-        const scene::SceneOccupancy occupancy(*scene);
-        const auto p = MotionPenetration(record, occupancy, BodySamplePoints(*runner.humanoid()));
-        const auto s = MeasureFootSliding(record);
-        features.push_back(PoseFeatures(record, 3));
+        story.seed = input.seed;
+        const StoryRun run = RunStory(PrepareStory(input), policies, story);
+        if (!o.outputs_dir.empty())
+          WriteStoryRun(o.outputs_dir / (difficulty + "_" + std::to_string(i)), run);
+        const fsm::StoryResult& result = run.result;
+        const io::MotionRecord& record = run.record;
+        const scene::SceneOccupancy occupancy(*run.story.scene);
+        const auto p =
+            eval::MotionPenetration(record, occupancy, eval::BodySamplePoints(*run.humanoid));
+        const auto s = eval::MeasureFootSliding(record);
+        features.push_back(eval::PoseFeatures(record, 3));
         row["keyframes"] = result.keyframes.size();
         row["success_rate"] = result.success_rate;
         row["contact_error"] = result.mean_contact_error;
@@ -94,6 +95,7 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
         row["penetration_mean_depth"] = p.mean_depth;
         row["penetration_max_depth"] = p.max_depth;
         row["foot_sliding_m_per_s"] = s.mean_speed;
+        row["style_z"] = !run.story.styles.empty();  // captions were turned into z
         sr += result.success_rate, ce += result.mean_contact_error, ss += result.success_steps;
         pen += p.fraction_inside, depth = std::max(depth, p.max_depth), slide += s.mean_speed;
         ++n;
@@ -113,8 +115,8 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       d["penetration_max_depth"] = depth;
       d["foot_sliding_m_per_s"] = slide / n;
       const Eigen::MatrixXd gen = Stack(features);
-      d["apd"] = AveragePairwiseDistance(gen);
-      if (reference.rows() > 1) d["fid"] = FrechetDistance(gen, reference);
+      d["apd"] = eval::AveragePairwiseDistance(gen);
+      if (reference.rows() > 1) d["fid"] = eval::FrechetDistance(gen, reference);
       all_features.insert(all_features.end(), features.begin(), features.end());
     }
     per[difficulty] = d;
@@ -127,13 +129,13 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
        "per-frame heading-frame body positions (42) + joint rotations (72), every 3rd frame"}};
   if (!all_features.empty()) {
     const Eigen::MatrixXd gen = Stack(all_features);
-    out["apd"] = AveragePairwiseDistance(gen);
+    out["apd"] = eval::AveragePairwiseDistance(gen);
     if (reference.rows() > 1) {
-      out["fid"] = FrechetDistance(gen, reference);
-      out["reference_apd"] = AveragePairwiseDistance(reference);
+      out["fid"] = eval::FrechetDistance(gen, reference);
+      out["reference_apd"] = eval::AveragePairwiseDistance(reference);
     }
   }
   return out;
 }
 
-}  // namespace sims::eval
+}  // namespace sims::story

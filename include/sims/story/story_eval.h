@@ -1,7 +1,8 @@
 // eval_story: SIMS Table 2 protocol. For each difficulty (simple, mid, hard) N scripts are
 // planned from themes on the built-in layouts and run with a policy set; reported are the
 // success rate, contact error and success steps, plus penetration and foot sliding over the
-// motion and FID/APD of the generated poses against the reference clips.
+// motion and FID/APD of the generated poses against the reference clips. Each story goes through
+// the same pipeline as run_story (story.h: PrepareStory → RunStory), style z included.
 #pragma once
 
 #include <filesystem>
@@ -12,8 +13,9 @@
 
 #include "sims/core/environment.h"
 #include "sims/fsm/story_runner.h"
+#include "sims/story/story.h"
 
-namespace sims::eval {
+namespace sims::story {
 
 /// What to evaluate.
 struct StoryEvalOptions {
@@ -23,13 +25,24 @@ struct StoryEvalOptions {
   std::vector<std::string> difficulties = {"simple", "mid", "hard"};  ///< Difficulties.
   int stories_per_difficulty = 5;                                     ///< N.
   uint64_t seed = 0;                                                  ///< Story i uses seed + i.
+  /// Motion–text model for caption → z, as StoryInput::style_model ("" = data/language/
+  /// text_motion if present).
+  std::string style_model;
+  /// When set, each story's run_story outputs go to DIR/<difficulty>_<i> (WriteStoryRun).
+  std::filesystem::path outputs_dir;
   fsm::StoryOptions story;  ///< FSM settings; missing skill policies count as failures.
   /// LLM fall-backs for planning the themes (planner::PlanRequest::environment); eval_story
   /// passes InstalledEnvironment(), the default fills nothing.
   Environment environment;
 };
 
+/// What story `index` of `difficulty` is: its theme (the list cycles), seed + index, no fixed
+/// scene (a built-in layout is retrieved) and the style model; run_story --theme THEME
+/// --difficulty D --seed S --scene '' prepares the same story.
+StoryInput EvalStoryInput(const StoryEvalOptions& options, const nlohmann::json& themes,
+                          const std::string& difficulty, int index);
+
 /// Runs the protocol; returns per-difficulty and overall metrics plus per-story rows.
 nlohmann::json EvaluateStories(const StoryEvalOptions& options);
 
-}  // namespace sims::eval
+}  // namespace sims::story

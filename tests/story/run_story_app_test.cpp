@@ -11,7 +11,7 @@
 #include "sims/io/motion_record.h"
 #include "sims/motion/bvh.h"
 
-namespace sims::fsm {
+namespace sims::story {
 namespace {
 
 int RunStory(const std::string& args) {
@@ -70,4 +70,4 @@ TEST(RunStoryAppTest, BadInputExitsNonZeroAndLeavesNoOutput) {
 }
 
 }  // namespace
-}  // namespace sims::fsm
+}  // namespace sims::story

@@ -16,7 +16,7 @@
 #include "sims/sim/features.h"
 #include "sims/task/skill.h"
 
-namespace sims::eval {
+namespace sims::story {
 namespace {
 
 namespace fs = std::filesystem;
@@ -83,12 +83,12 @@ TEST(ToySkillTest, RegisteredSkillTrainsEvaluatesAndRunsInAStory) {
   const fs::path toy = TrainTiny("toy_stand", dir);
   ASSERT_TRUE(fs::exists(toy));
 
-  PolicyEvalOptions eo;
+  eval::PolicyEvalOptions eo;
   eo.checkpoint = toy;
   eo.trials = 2;
   eo.num_envs = 2;
   eo.threads = 1;
-  const PolicyEvalReport rep = EvaluatePolicy(eo);
+  const eval::PolicyEvalReport rep = eval::EvaluatePolicy(eo);
   EXPECT_EQ(rep.skill, "toy_stand");
   EXPECT_EQ(rep.trials, 2);
   EXPECT_GE(rep.success_rate, 0.0);
@@ -123,4 +123,4 @@ TEST(ToySkillTest, RegisteredSkillTrainsEvaluatesAndRunsInAStory) {
 }
 
 }  // namespace
-}  // namespace sims::eval
+}  // namespace sims::story

@@ -1,0 +1,215 @@
+#include "sims/story/story.h"
+
+#include <cstdlib>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "common/test_util.h"
+#include "sims/core/error.h"
+#include "sims/core/paths.h"
+#include "sims/language/motion_text.h"
+#include "sims/language/text_encoder.h"
+#include "sims/story/story_eval.h"
+#include "sims/task/styles.h"
+
+namespace sims::story {
+namespace {
+
+// The bundled policies (walk and reach, no sit, lie, get-up or unified policy).
+fsm::PolicySet BundledPolicies() { return fsm::LoadPolicySet(fsm::DefaultPolicySetPath()); }
+
+// Short time-outs: the tests check the pipeline, not how well the policies do.
+fsm::StoryOptions ShortOptions() {
+  fsm::StoryOptions o;
+  o.walk_timeout_s = 1.0;
+  o.skill_timeout_s = 1.0;
+  return o;
+}
+
+// A motion–text model folder (model.pt, model.json, bank.json) trained for a few steps on random
+// features with the built-in text encoder, so StyleEmbedder::Load works on it; "" when the
+// encoder's word vectors are not prepared (build/bin/prepare_assets).
+std::filesystem::path TinyStyleModel() {
+  static const std::filesystem::path dir = []() -> std::filesystem::path {
+    if (!language::BuiltinTextEncoder::DataAvailable()) return {};
+    const auto out = sims::testing::TempDir("story_style_model");
+    language::MotionTextTrainConfig c;
+    c.model.feature_dim = 6;
+    c.model.seq_frames = 12;
+    c.model.frames_per_token = 3;
+    c.model.d_model = 16;
+    c.model.num_heads = 2;
+    c.model.encoder_layers = 1;
+    c.model.decoder_layers = 1;
+    c.model.ff_dim = 32;
+    c.model.z_dim = task::kStyleDim;  // what the policies are conditioned on
+    c.model.mlp_hidden = {16};
+    c.out_dir = out.string();
+    c.steps = 2;
+    c.batch_size = 2;
+    c.threads = 1;
+    std::vector<language::CaptionedSequence> data(2);
+    for (int i = 0; i < 2; ++i) {
+      data[i].clip_name = i ? "sad_walk" : "happy_walk";
+      data[i].features = Eigen::MatrixXf::Random(20, 6);
+      data[i].captions = {i ? "walks sadly with the head bowed" : "walks happily"};
+    }
+    language::TrainMotionText(c, data, language::BuiltinTextEncoder(c.text_encoder));
+    return out;
+  }();
+  return dir;
+}
+
+TEST(PrepareStoryTest, NeedsExactlyOneInput) {
+  StoryInput in;
+  EXPECT_NE(sims::testing::ErrorOf([&] { PrepareStory(in); }).find("exactly one of"),
+            std::string::npos);
+  in.theme = "a person relaxes";
+  in.instruction = "sit on the chair";
+  EXPECT_NE(sims::testing::ErrorOf([&] { PrepareStory(in); }).find("2 given"), std::string::npos);
+}
+
+TEST(PrepareStoryTest, InstructionWithGoalAndStyle) {
+  StoryInput in;
+  in.instruction = "walk to the chair slowly";
+  in.scene = "chair";
+  in.goal = Eigen::Vector3d(1, 2, 0);
+  const PreparedStory p = PrepareStory(in);
+  ASSERT_EQ(p.instructions.size(), 1u);
+  EXPECT_EQ(p.instructions[0].skill, "walk");
+  EXPECT_TRUE(p.instructions[0].target.has_point);
+  EXPECT_TRUE(p.instructions[0].target.point.isApprox(Eigen::Vector3d(1, 2, 0)));
+  EXPECT_EQ(p.plan.planner, "instruction");
+  EXPECT_EQ(p.title, "walk to the chair slowly");
+  if (TinyStyleModel().empty()) GTEST_SKIP() << "word vectors not prepared: no style model";
+  in.style_model = TinyStyleModel().string();
+  const PreparedStory styled = PrepareStory(in);
+  ASSERT_EQ(styled.styles.size(), 1u);
+  EXPECT_EQ(styled.instructions[0].z.size(), task::kStyleDim);
+  EXPECT_NEAR(styled.instructions[0].z.norm(), 1.f, 1e-4f);
+  EXPECT_EQ(styled.styles[0]["caption"], "walk to the chair slowly");
+}
+
+TEST(PrepareStoryTest, NoSceneRetrievesABuiltinLayout) {
+  StoryInput in;
+  in.instruction = "sit on the sofa";
+  in.scene = "";
+  const PreparedStory p = PrepareStory(in);
+  EXPECT_NE(p.plan.layout.mode, "given");
+  EXPECT_FALSE(p.scene->objects.empty());
+  ASSERT_FALSE(p.instructions.empty());
+  EXPECT_EQ(p.instructions.back().skill, "sit");
+}
+
+TEST(StoryRunTest, RunsAUniHsiScenePlan) {
+  const auto dir = sims::testing::TempDir("story_sceneplan");
+  StoryInput in;
+  in.scene_plan = sims::testing::TestData("scene/sceneplan.json").string() + "#0000";
+  in.partnet_root = sims::testing::TestData("scene/partnet").string();
+  // The bundled set has no unified policy: the contact step fails with a note.
+  const StoryRun run = RunStory(PrepareStory(in), BundledPolicies(), ShortOptions());
+  const auto r = WriteStoryRun(dir / "out", run);
+  ASSERT_EQ(r["keyframes"].size(), 2u);
+  EXPECT_EQ(r["keyframes"][0]["skill"], "walk");
+  EXPECT_EQ(r["keyframes"][1]["skill"], "unified");
+  EXPECT_NE(r["keyframes"][1]["note"].get<std::string>().find("no usable policy for 'unified'"),
+            std::string::npos);
+  EXPECT_EQ(r["planner"], "sceneplan");
+  const auto plan = ReadJsonFile(dir / "out" / "plan.json");
+  EXPECT_EQ(plan["id"], "0000");
+  EXPECT_TRUE(plan["plan"].contains("contact_pairs"));
+}
+
+TEST(StoryRunTest, WritesEveryOutputOrNothing) {
+  const auto dir = sims::testing::TempDir("story");
+  StoryInput in;
+  in.instruction = "walk to the chair";
+  in.scene = "chair";
+  const auto policies = BundledPolicies();
+  const StoryRun run = RunStory(PrepareStory(in), policies, ShortOptions());
+  const auto result = WriteStoryRun(dir / "out", run);
+  for (const char* f : {"result.json", "motion.json", "motion.bvh", "scene.glb", "index.html",
+                        "story.txt", "plan.json", "config.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.partial"));
+  const auto saved = ReadJsonFile(dir / "out" / "result.json");
+  EXPECT_EQ(saved, result);
+  EXPECT_EQ(saved["keyframes"][0]["skill"], "walk");
+  EXPECT_EQ(ReadJsonFile(dir / "out" / "config.json")["instruction"], "walk to the chair");
+
+  // A skill without a policy: by default its keyframe fails with a note and the story runs.
+  StoryInput sit = in;
+  sit.instruction = "sit on the chair";  // no sit policy in the set
+  const PreparedStory sit_story = PrepareStory(sit);
+  const auto sat = StoryRunToJson(RunStory(sit_story, policies, ShortOptions()));
+  ASSERT_FALSE(sat["keyframes"].empty());
+  EXPECT_EQ(sat["keyframes"].back()["skill"], "sit");
+  EXPECT_FALSE(sat["keyframes"].back()["success"].get<bool>());
+  EXPECT_NE(sat["keyframes"].back()["note"].get<std::string>().find("no usable policy for 'sit'"),
+            std::string::npos);
+
+  // Bad inputs: clear errors.
+  fsm::StoryOptions strict = ShortOptions();
+  strict.missing_policy_fails = false;
+  EXPECT_THROW(RunStory(sit_story, policies, strict), Error);
+  std::ofstream(dir / "script.json")
+      << R"({"keyframes": [{"skill": "sit", "furniture": "spaceship"}]})";
+  StoryInput bad;
+  bad.input = (dir / "script.json").string();
+  EXPECT_THROW(RunStory(PrepareStory(bad), policies, strict), Error);
+}
+
+// run_story (the app) and eval_story (EvaluateStories) run the same story through the same
+// pipeline: identical per-keyframe outcomes, styles and motion to the last frame. The app is run
+// as a separate process, so its flags are part of what is compared.
+TEST(StoryPipelineTest, EvalStoryAndRunStoryGiveTheSameResult) {
+  const auto dir = sims::testing::TempDir("story_same");
+  const std::filesystem::path style = TinyStyleModel();
+  std::ofstream(dir / "themes.json") << R"({"themes": ["a tired person comes home and rests"]})";
+  StoryEvalOptions o;
+  o.policies = fsm::DefaultPolicySetPath();
+  o.themes = dir / "themes.json";
+  o.difficulties = {"simple"};
+  o.stories_per_difficulty = 1;
+  o.seed = 3;
+  o.style_model = style.string();
+  o.story = ShortOptions();
+  o.outputs_dir = dir / "eval";
+  const auto report = EvaluateStories(o);
+  ASSERT_EQ(report["stories"].size(), 1u);
+  ASSERT_FALSE(report["stories"][0].contains("error")) << report["stories"][0]["error"];
+  EXPECT_EQ(report["stories"][0]["style_z"].get<bool>(), !style.empty());
+
+  fsm::StoryOptions options = o.story;
+  options.seed = o.seed;
+  WriteJsonFile(dir / "options.json", ConfigToJson(options));
+  const std::string cmd = std::string(SIMS_RUN_STORY_BIN) +
+                          " --theme 'a tired person comes home and rests' --difficulty simple" +
+                          " --scene '' --seed 3 --policies " + o.policies.string() + " --options " +
+                          (dir / "options.json").string() +
+                          (style.empty() ? "" : " --style-model " + style.string()) + " --out " +
+                          (dir / "run").string() + " --log-level warn";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+
+  const auto from_eval = ReadJsonFile(dir / "eval" / "simple_0" / "result.json");
+  const auto from_run = ReadJsonFile(dir / "run" / "result.json");
+  ASSERT_GE(from_run["keyframes"].size(), 2u);
+  EXPECT_EQ(from_eval["keyframes"], from_run["keyframes"]);
+  EXPECT_EQ(from_eval["styles"], from_run["styles"]);
+  EXPECT_EQ(from_eval, from_run);
+  EXPECT_EQ(from_eval["success_rate"], report["stories"][0]["success_rate"]);
+  EXPECT_EQ(from_eval["falls"], report["stories"][0]["falls"]);
+  if (!style.empty()) {
+    EXPECT_EQ(from_run["styles"].size(), from_run["keyframes"].size());
+  }
+  // The motion, final pose included.
+  const auto motion_eval = ReadJsonFile(dir / "eval" / "simple_0" / "motion.json");
+  const auto motion_run = ReadJsonFile(dir / "run" / "motion.json");
+  EXPECT_EQ(motion_eval, motion_run);
+  EXPECT_EQ(ReadJsonFile(dir / "eval" / "simple_0" / "plan.json"),
+            ReadJsonFile(dir / "run" / "plan.json"));
+}
+
+}  // namespace
+}  // namespace sims::story
