@@ -11,9 +11,7 @@
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/loaders.h"
-#include "sims/task/object_skill.h"
-#include "sims/task/unified.h"
-#include "sims/task/walk.h"
+#include "sims/task/unified/unified.h"
 
 namespace sims::eval {
 
@@ -25,9 +23,7 @@ class RecordingHook : public sim::TaskHook {
  public:
   RecordingHook(std::shared_ptr<task::Skill> skill, int n)
       : skill_(std::move(skill)), error_(n, 0.0), completed_(n, 0), num_steps_(n, 1) {
-    object_ = dynamic_cast<task::ObjectSkill*>(skill_.get());
     unified_ = dynamic_cast<task::UnifiedSkill*>(skill_.get());
-    walk_ = dynamic_cast<task::WalkSkill*>(skill_.get());
   }
   int obs_dim() const override { return skill_->obs_dim(); }
   std::vector<sim::ObsSegment> obs_segments() const override { return skill_->obs_segments(); }
@@ -44,14 +40,10 @@ class RecordingHook : public sim::TaskHook {
   sim::TaskStepResult Step(const sim::EnvView& v) override {
     const sim::TaskStepResult r = skill_->Step(v);
     const int i = v.env_id;
-    if (unified_) {
-      error_[i] = unified_->contact_error(i);
+    error_[i] = skill_->goal_error(v);
+    if (unified_) {  // a chain of contacts: progress through its steps
       completed_[i] = unified_->steps_completed(i);
       num_steps_[i] = static_cast<int>(unified_->steps(i).size());
-    } else if (object_) {
-      error_[i] = object_->goal_error(i);
-    } else if (walk_) {
-      error_[i] = (walk_->target(i) - v.pose->root_pos.head<2>()).norm();
     }
     return r;
   }
@@ -63,9 +55,7 @@ class RecordingHook : public sim::TaskHook {
 
  private:
   std::shared_ptr<task::Skill> skill_;
-  task::ObjectSkill* object_ = nullptr;
   task::UnifiedSkill* unified_ = nullptr;
-  task::WalkSkill* walk_ = nullptr;
   std::vector<double> error_;
   std::vector<int> completed_, num_steps_;
 };
@@ -132,15 +122,13 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   task::SkillConfig& sc = rc.skill;
   const int n_env = o.num_envs > 0 ? o.num_envs : std::min(o.trials, 16);
 
-  // Evaluation settings: standing starts, held-out objects, fixed walk targets 3–5 m away.
-  sc.held_out_objects = o.held_out;
+  // Evaluation settings: standing starts, held-out objects, and the skill's own (walk: fixed
+  // targets 3–5 m away).
+  const task::SkillInfo& info = task::FindSkill(sc.skill);
+  sc.object.held_out_objects = o.held_out;
   sc.reference_init_prob = 0;
   if (!sc.style_conditioned) sc.motion.manifest.clear();
-  if (sc.skill == "walk") {
-    sc.target_min_distance = 3.0;
-    sc.target_max_distance = 5.0;
-    sc.resample_target_on_success = false;
-  }
+  if (info.configure_eval) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
   ec.num_envs = n_env;
   ec.seed = o.seed;
@@ -150,9 +138,11 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   std::shared_ptr<const scene::Scene> scene;
   task::ContactPlan plan;
   if (!o.scene_plan.empty()) {
-    if (sc.skill != "unified")
+    if (!info.traits.contact_steps)
       ThrowInputError(o.checkpoint.string(), "extra.skill.skill",
-                      "a 'unified' policy to run a ScenePlan (--scene-plan)",
+                      "a policy of a chain-of-contacts skill (" +
+                          SkillNames([](const SkillTraits& t) { return t.contact_steps; }) +
+                          ") to run a ScenePlan (--scene-plan)",
                       "a '" + sc.skill + "' policy");
     auto loaded = task::LoadScenePlanRef(o.scene_plan, o.partnet_root);
     scene = loaded.scene;

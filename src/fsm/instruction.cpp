@@ -4,6 +4,8 @@
 #include <cctype>
 #include <sstream>
 
+#include "sims/core/error.h"
+#include "sims/core/skill_vocabulary.h"
 #include "sims/fsm/navigation.h"
 #include "sims/scene/contact_targets.h"
 #include "sims/sim/humanoid.h"
@@ -31,6 +33,15 @@ bool HasAny(const std::vector<std::string>& words, std::initializer_list<const c
     for (const char* k : keys)
       if (w == k) return true;
   return false;
+}
+
+// The first vocabulary skill with a trait (a story's walk, the ScenePlan runner).
+template <class Pred>
+std::string SkillWith(Pred pred) {
+  for (const SkillTraits& t : SkillVocabulary())
+    if (pred(t)) return t.name;
+  SIMS_CHECK_MSG(false, "the skill vocabulary lacks a skill this story needs");
+  return {};
 }
 
 // Centre of the room's floor polygon, for walks that end on free floor.
@@ -82,7 +93,11 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
       in.note = "object '" + k.object + "' is not in the scene";
     }
     in.target.object = obj;
-    if (k.skill == "walk") {
+    // A plan may name a skill no one registered: it gets no traits and fails in the FSM.
+    static const SkillTraits kUnknown;
+    const SkillTraits* found = FindSkillTraits(k.skill);
+    const SkillTraits& traits = found ? *found : kUnknown;
+    if (traits.navigates) {
       if (obj >= 0) {
         // A stand point the body fits at with its arms swinging (the navigation's clearance),
         // else the tightest one the scene offers.
@@ -103,11 +118,11 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
         in.placed = false;
         in.note = "walk keyframe without an object or a room to walk to";
       }
-    } else if (k.skill == "reach") {
+    } else if (traits.hand_target) {
       in.target.hand = ReachHandFromCaption(k.caption);
       in.target.height = ReachHeightFromCaption(k.caption);
     }
-    if ((k.skill == "sit" || k.skill == "lie" || k.skill == "reach") && obj < 0 && in.placed) {
+    if (traits.needs_object && obj < 0 && in.placed) {
       in.placed = false;
       in.note = k.skill + " keyframe without a bound object";
     }
@@ -142,6 +157,9 @@ std::string ContactStepCaption(const task::ContactStep& step, const scene::Scene
 
 std::vector<Instruction> BuildInstructions(const task::ContactPlan& plan,
                                            const scene::Scene& scene) {
+  // Walking steps go to the story's walk-like skill, contact steps to the chain-of-contacts one.
+  const std::string walk_skill = SkillWith([](const SkillTraits& t) { return t.navigates; });
+  const std::string contact_skill = SkillWith([](const SkillTraits& t) { return t.contact_steps; });
   std::vector<Instruction> out;
   for (size_t k = 0; k < plan.steps.size(); ++k) {
     const task::ContactStep& step = plan.steps[k];
@@ -151,12 +169,12 @@ std::vector<Instruction> BuildInstructions(const task::ContactPlan& plan,
     if (step.object >= 0 && step.object < static_cast<int>(scene.objects.size()))
       in.object_name = scene.objects[step.object].instance;
     if (step.walking()) {
-      in.skill = "walk";
+      in.skill = walk_skill;
       in.caption = "walk to " + in.object_name;
       in.target.point = {step.stand_point.x(), step.stand_point.y(), 0};
       in.target.has_point = true;
     } else {
-      in.skill = "unified";
+      in.skill = contact_skill;
       in.caption = ContactStepCaption(step, scene);
       in.target.contact_step = std::make_shared<const task::ContactStep>(step);
     }

@@ -11,14 +11,14 @@
 #include "sims/core/log.h"
 #include "sims/core/progress.h"
 #include "sims/core/rng.h"
+#include "sims/core/skill_vocabulary.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/contact_targets.h"
 #include "sims/sim/env.h"
 #include "sims/sim/features.h"
 #include "sims/sim/scene_physics.h"
-#include "sims/task/object_skill.h"
-#include "sims/task/walk.h"
+#include "sims/task/skill.h"
 
 namespace sims::fsm {
 
@@ -80,12 +80,15 @@ LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& f
   p.skill_config = stored.skill;
   if (stored.env) p.env_config = *stored.env;
   const std::string trained = p.skill_config.skill;
-  // sit_getup policies serve both skills; otherwise the policy must be for this skill.
-  if (trained != skill && !(trained == "sit_getup" && (skill == "sit" || skill == "getup")))
+  // A policy runs its own skill and the ones its skill serves (sit_getup: sit and getup).
+  const SkillTraits* trained_traits = FindSkillTraits(trained);
+  const bool serves = trained_traits && std::count(trained_traits->serves.begin(),
+                                                   trained_traits->serves.end(), skill) > 0;
+  if (trained != skill && !serves)
     ThrowInputError(file.string(), "metadata.extra.skill.skill",
                     "a policy trained for '" + skill + "'", "'" + trained + "'");
   // A story never resamples targets or loads clips: the FSM sets every goal.
-  p.skill_config.resample_target_on_success = false;
+  p.skill_config.walk.resample_target_on_success = false;
   p.skill_config.motion.manifest.clear();
   p.skill_config.skill = skill;
   return p;
@@ -130,12 +133,12 @@ struct StoryRunner::Impl {
     if (recorder) recorder->AddFrame(env->pose(0));
   }
 
-  // Error of the current goal: pelvis-to-target for walks, the skill's own measure otherwise.
+  // Error of the current goal: pelvis-to-target for walk-like skills, the skill's own measure
+  // otherwise.
   double GoalError(const std::string& skill, const task::InstructionTarget& target) const {
-    if (skill == "walk") return (env->pose(0).root_pos.head<2>() - target.point.head<2>()).norm();
-    if (auto* obj = dynamic_cast<const task::ObjectSkill*>(skills.at(skill).get()))
-      return obj->goal_error(0);
-    return 0.0;
+    if (SkillTraitsOf(skill).navigates)
+      return (env->pose(0).root_pos.head<2>() - target.point.head<2>()).norm();
+    return skills.at(skill)->goal_error(View());
   }
 
   enum class Outcome { kSuccess, kTimeout, kFall, kCannotStart };
@@ -143,12 +146,14 @@ struct StoryRunner::Impl {
   // Runs one attempt of an instruction; walks follow A* waypoints.
   Outcome Attempt(const Instruction& in, double* error, std::string* note) {
     task::Skill* skill = skills.at(in.skill).get();
+    const SkillTraits& traits = SkillTraitsOf(in.skill);
+    const bool walk_timing = traits.timing == StoryTiming::kWalk;
     task->set_current(skill);
     skill->SetStyleVector(0, in.z);
-    double timeout = in.skill == "walk" ? options.walk_timeout_s : options.skill_timeout_s;
+    double timeout = walk_timing ? options.walk_timeout_s : options.skill_timeout_s;
     std::vector<Eigen::Vector2d> waypoints;
     task::InstructionTarget target = in.target;
-    if (in.skill == "walk" && target.has_point) {
+    if (traits.navigates && target.has_point) {
       waypoints = free_space->Waypoints(env->pose(0).root_pos.head<2>(), target.point.head<2>());
       if (waypoints.empty()) waypoints = {target.point.head<2>()};  // no path: head straight
       // A detour around walls takes longer than a walk across the room.
@@ -182,7 +187,7 @@ struct StoryRunner::Impl {
       return Outcome::kCannotStart;
     }
     const int hold_needed =
-        in.skill == "walk" ? options.walk_success_hold_steps : options.success_hold_steps;
+        walk_timing ? options.walk_success_hold_steps : options.success_hold_steps;
     const double start = Now();
     int held = 0;
     while (Now() - start < timeout) {
@@ -207,9 +212,12 @@ struct StoryRunner::Impl {
 
   // After a fall: get up where the character lies (if a get-up policy exists).
   bool Recover() {
-    if (!skills.count("getup")) return false;
+    const auto it = std::find_if(skills.begin(), skills.end(), [](const auto& s) {
+      return SkillTraitsOf(s.first).recovers_falls;
+    });
+    if (it == skills.end()) return false;
     Instruction up;
-    up.skill = "getup";
+    up.skill = it->first;
     up.target.point = env->pose(0).root_pos;
     up.target.has_point = true;
     double err = 0;
@@ -255,15 +263,16 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   sim::EnvConfig env_config;
   std::shared_ptr<task::Skill> layout;
   int obs_dim = -1;
-  // Each skill sees the heightmap of the kind of scene it was trained in: walk trains on an
-  // empty floor (obstacles are the navigation's job), so it gets the flat floor's heightmap;
+  // Each skill sees the heightmap of the kind of scene it was trained in: skills trained on an
+  // empty floor (walk: obstacles are the navigation's job) get the flat floor's heightmap;
   // object skills trained among furniture get the story scene's.
   task::SkillContext flat = m.context;
   flat.height_grid = std::make_shared<const scene::SceneHeightGrid>(scene::Scene{});
   for (const auto& [skill, file] : policies.policies) {
     LoadedPolicy p = LoadPolicy(skill, file);
     try {
-      auto s = task::FindSkill(skill).create(p.skill_config, skill == "walk" ? flat : m.context);
+      const task::SkillInfo& info = task::FindSkill(skill);
+      auto s = info.create(p.skill_config, info.traits.flat_scene ? flat : m.context);
       if (obs_dim < 0) {
         obs_dim = sim::kSelfObsDim + s->obs_dim();
         env_config = p.env_config;
@@ -306,12 +315,15 @@ std::shared_ptr<const sim::Humanoid> StoryRunner::humanoid() const {
 
 void StoryRunner::CheckPolicies(const std::vector<Instruction>& instructions) const {
   const auto& m = *impl_;
-  std::set<std::string> needed = {"walk"};
+  std::set<std::string> needed;
+  for (const SkillTraits& t : SkillVocabulary())
+    if (t.required) needed.insert(t.name);
   for (const auto& in : instructions)
     if (in.placed) needed.insert(in.skill);
   for (const auto& s : needed) {
     if (m.skills.count(s)) continue;
-    if (m.options.missing_policy_fails && s != "walk") {
+    const SkillTraits* traits = FindSkillTraits(s);  // a plan may name an unknown skill
+    if (m.options.missing_policy_fails && !(traits && traits->required)) {
       spdlog::warn("no usable policy for '{}' in {}: its keyframes will be recorded as failed", s,
                    m.policy_set.source.string());
       continue;
@@ -427,7 +439,7 @@ StoryResult StoryRunner::Run(const std::vector<Instruction>& instructions,
     }
     out.end_time = m.Now();
     const bool attempted = in.placed && m.skills.count(in.skill);
-    if (attempted && (in.target.object >= 0 || in.skill == "walk")) {
+    if (attempted && (in.target.object >= 0 || SkillTraitsOf(in.skill).navigates)) {
       error_sum += out.contact_error;
       ++error_count;
     }

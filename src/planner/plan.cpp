@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "sims/core/skill_vocabulary.h"
+
 namespace sims::planner {
 
 namespace {
@@ -28,9 +30,11 @@ void PlanLayout::Validate() const {
 }
 
 void PlanKeyframe::Validate() const {
-  Require(OneOf(skill, {"walk", "sit", "lie", "reach", "getup"}), "skill",
-          "one of walk, sit, lie, reach, getup");
-  if (placed && skill != "walk")
+  const SkillTraits* traits = FindSkillTraits(skill);
+  Require(traits && traits->scripted, "skill",
+          "one of " + SkillNames([](const SkillTraits& t) { return t.scripted; }));
+  // Walk-like keyframes may end on free floor; every other placed keyframe binds an object.
+  if (placed && !traits->navigates)
     Require(!object.empty(), "object", "an object instance when placed");
 }
 

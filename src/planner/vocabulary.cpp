@@ -5,25 +5,31 @@
 #include <mutex>
 #include <set>
 
+#include "sims/core/error.h"
 #include "sims/core/paths.h"
+#include "sims/core/skill_vocabulary.h"
 #include "sims/planner/text.h"
 
 namespace sims::planner {
 
+namespace {
+// The planner's script grammar (Skill) names the skill vocabulary's scripted skills in order.
+const std::vector<const SkillTraits*>& GrammarSkills() {
+  static const std::vector<const SkillTraits*> skills = [] {
+    std::vector<const SkillTraits*> s = ScriptedSkills();
+    SIMS_CHECK_MSG(s.size() >= kNumSkills, "the skill vocabulary lacks scripted skills");
+    s.resize(kNumSkills);
+    return s;
+  }();
+  return skills;
+}
+
+const SkillTraits& TraitsOf(Skill skill) { return *GrammarSkills()[static_cast<int>(skill)]; }
+}  // namespace
+
 const char* SkillName(Skill skill) {
-  switch (skill) {
-    case Skill::kWalk:
-      return "walk";
-    case Skill::kSit:
-      return "sit";
-    case Skill::kLie:
-      return "lie";
-    case Skill::kReach:
-      return "reach";
-    case Skill::kGetUp:
-      return "getup";
-  }
-  return "?";
+  const int k = static_cast<int>(skill);
+  return k >= 0 && k < kNumSkills ? TraitsOf(skill).name.c_str() : "?";
 }
 
 std::string Vocabulary::Squash(const std::string& s) {
@@ -36,12 +42,14 @@ std::string Vocabulary::Squash(const std::string& s) {
 }
 
 void Vocabulary::Validate() const {
-  static const char* kSkills[] = {"walk", "sit", "lie", "reach", "getup"};
-  Require(skills.size() == 5, "skills", "exactly the five skills walk, sit, lie, reach, getup");
-  for (const char* s : kSkills) {
-    bool found =
-        std::any_of(skills.begin(), skills.end(), [&](const SkillSpec& k) { return k.name == s; });
-    Require(found, "skills", std::string("an entry named '") + s + "'");
+  // The skills are the skill vocabulary's scripted ones (core/skill_vocabulary.h), each once.
+  const std::string scripted = SkillNames([](const SkillTraits& t) { return t.scripted; });
+  const std::vector<const SkillTraits*> known = ScriptedSkills();
+  Require(skills.size() == known.size(), "skills", "exactly the scripted skills " + scripted);
+  for (const SkillTraits* t : known) {
+    bool found = std::any_of(skills.begin(), skills.end(),
+                             [&](const SkillSpec& k) { return k.name == t->name; });
+    Require(found, "skills", "an entry named '" + t->name + "'");
   }
   for (std::size_t i = 0; i < skills.size(); ++i) {
     for (std::size_t a = 0; a < skills[i].axes.size(); ++a) {
@@ -58,9 +66,11 @@ void Vocabulary::Validate() const {
   for (std::size_t i = 0; i < furniture.size(); ++i) {
     Require(names.insert(furniture[i].name).second, "furniture[" + std::to_string(i) + "].name",
             "a unique category name");
-    for (const std::string& a : furniture[i].affordances)
-      Require(a == "sit" || a == "lie" || a == "reach",
-              "furniture[" + std::to_string(i) + "].affordances", "values among sit, lie, reach");
+    for (const std::string& a : furniture[i].affordances) {
+      const SkillTraits* t = FindSkillTraits(a);
+      Require(t && t->affordance, "furniture[" + std::to_string(i) + "].affordances",
+              "values among " + SkillNames([](const SkillTraits& s) { return s.affordance; }));
+    }
   }
   for (std::size_t i = 0; i < substitutions.size(); ++i) {
     const auto& s = substitutions[i];
@@ -80,8 +90,8 @@ void Vocabulary::BuildIndex() {
   room_index_.clear();
   for (const SkillSpec& s : skills) {
     Skill skill = Skill::kWalk;
-    for (Skill k : {Skill::kWalk, Skill::kSit, Skill::kLie, Skill::kReach, Skill::kGetUp})
-      if (s.name == SkillName(k)) skill = k;
+    for (int k = 0; k < kNumSkills; ++k)
+      if (s.name == SkillName(static_cast<Skill>(k))) skill = static_cast<Skill>(k);
     skill_index_[Squash(s.name)] = skill;
     for (const auto& a : s.aliases) skill_index_[Squash(a)] = skill;
   }
@@ -139,24 +149,18 @@ const FurnitureSpec* Vocabulary::FurnitureByName(const std::string& category) co
 }
 
 bool Vocabulary::Affords(const std::string& category, Skill skill) const {
-  if (skill == Skill::kWalk) return true;
+  const SkillTraits& t = TraitsOf(skill);
+  if (t.navigates) return true;  // walking goes anywhere
   const FurnitureSpec* f = FurnitureByName(category);
   if (!f) return false;
-  auto has = [&](const char* a) {
+  auto has = [&](const std::string& a) {
     return std::find(f->affordances.begin(), f->affordances.end(), a) != f->affordances.end();
   };
-  switch (skill) {
-    case Skill::kSit:
-      return has("sit");
-    case Skill::kLie:
-      return has("lie");
-    case Skill::kReach:
-      return has("reach");
-    case Skill::kGetUp:
-      return has("sit") || has("lie");
-    default:
-      return true;
-  }
+  if (has(t.name)) return true;
+  // A follow-up skill (getup) works where a skill it follows (sit, lie) does.
+  for (const SkillTraits& s : SkillVocabulary())
+    if (s.follow_up == t.name && has(s.name)) return true;
+  return false;
 }
 
 std::vector<std::string> Vocabulary::CategoriesAffording(Skill skill) const {

@@ -47,20 +47,28 @@ bool FreeAt(const scene::SceneHeightGrid& grid, const Eigen::Vector2d& p, double
 }
 }  // namespace
 
+void ObjectParams::Validate() const {
+  Require(num_objects >= 0, "num_objects", "a non-negative count");
+  Require(spawn_max_distance >= spawn_min_distance && spawn_min_distance >= 0, "spawn_max_distance",
+          "a distance ≥ spawn_min_distance ≥ 0");
+  Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
+  Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
+}
+
 scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
                                  const std::vector<std::string>& default_categories) {
-  const auto& cats =
-      config.object_categories.empty() ? default_categories : config.object_categories;
+  const auto& cats = config.object.object_categories.empty() ? default_categories
+                                                             : config.object.object_categories;
   if (cats.empty())
     ThrowInputError("skill config", "object_categories", "at least one furniture category", "none");
   scene::Scene s;
   s.name = "training_ground_" + config.skill;
-  const int n = std::max(1, config.num_objects);
+  const int n = std::max(1, config.object.num_objects);
   const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   for (int i = 0; i < n; ++i) {
     const std::string& cat = cats[i % cats.size()];
-    scene::Object o =
-        scene::RandomFurniture(cat, rng, config.held_out_objects, cat + "_" + std::to_string(i));
+    scene::Object o = scene::RandomFurniture(cat, rng, config.object.held_out_objects,
+                                             cat + "_" + std::to_string(i));
     const double yaw = rng.Uniform(-M_PI, M_PI);
     scene::PlaceObject(&o, (i % side) * kTrainingGroundSpacing, (i / side) * kTrainingGroundSpacing,
                        yaw);
@@ -183,7 +191,7 @@ ObjectSkill::ObjectSkill(const SkillConfig& config, const SkillContext& context)
 
 void ObjectSkill::CollectObjects(const std::string& what) {
   const scene::Scene& s = *context_.scene;
-  const auto& cats = config_.object_categories;
+  const auto& cats = config_.object.object_categories;
   for (int i = 0; i < static_cast<int>(s.objects.size()); ++i) {
     if (!cats.empty() && std::find(cats.begin(), cats.end(), s.objects[i].category) == cats.end())
       continue;
@@ -251,7 +259,8 @@ bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
 Eigen::Vector2d ObjectSkill::SpawnPoint(const ObjectGeometry& g, Rng& rng) const {
   Eigen::Vector2d p = g.center;
   for (int attempt = 0; attempt < 32; ++attempt) {
-    const double r = g.radius + rng.Uniform(config_.spawn_min_distance, config_.spawn_max_distance);
+    const double r = g.radius + rng.Uniform(config_.object.spawn_min_distance,
+                                            config_.object.spawn_max_distance);
     const double a = rng.Uniform(-M_PI, M_PI);
     p = g.center + r * Eigen::Vector2d(std::cos(a), std::sin(a));
     if (FreeFloor(p, 0.35)) return p;
@@ -336,7 +345,7 @@ sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view,
   const double r =
       ContactReward(anchor, view.pose->root_pos.head<2>(), view.pose->root_lin_vel.head<2>(),
                     FacingOf(*view.pose), config_.target_speed, goal_sum);
-  return Finish(view, r, d < config_.contact_success_threshold);
+  return Finish(view, r, d < config_.object.contact_success_threshold);
 }
 
 sim::TaskStepResult ObjectSkill::Finish(const sim::EnvView& view, double reward, bool success) {
@@ -346,7 +355,7 @@ sim::TaskStepResult ObjectSkill::Finish(const sim::EnvView& view, double reward,
   r.success = success;
   hold_[i] = success ? hold_[i] + 1 : 0;
   if (hold_[i] >= config_.success_hold_steps) r.truncate = true;
-  if (config_.max_contact_force > 0 && ContactForce(view) > config_.max_contact_force)
+  if (config_.object.max_contact_force > 0 && ContactForce(view) > config_.object.max_contact_force)
     r.terminate = true;
   return r;
 }

@@ -7,12 +7,12 @@
 #include "sims/core/paths.h"
 #include "sims/sim/features.h"
 #include "sims/sim/scene_physics.h"
-#include "sims/task/getup.h"
-#include "sims/task/lie.h"
-#include "sims/task/reach.h"
-#include "sims/task/sit.h"
-#include "sims/task/unified.h"
-#include "sims/task/walk.h"
+#include "sims/task/getup/getup.h"
+#include "sims/task/lie/lie.h"
+#include "sims/task/reach/reach.h"
+#include "sims/task/sit/sit.h"
+#include "sims/task/unified/unified.h"
+#include "sims/task/walk/walk.h"
 
 namespace sims::task {
 
@@ -22,15 +22,9 @@ void SkillConfig::Validate() const {
   Require(reference_init_max_fraction > 0 && reference_init_max_fraction <= 1,
           "reference_init_max_fraction", "a fraction in (0, 1]");
   Require(target_speed >= 0, "target_speed", "a non-negative speed (m/s)");
-  Require(target_min_distance >= 0 && target_max_distance >= target_min_distance,
-          "target_max_distance", "a distance ≥ target_min_distance ≥ 0");
-  Require(walk_success_radius > 0, "walk_success_radius", "a positive radius (m)");
   Require(success_hold_steps >= 1, "success_hold_steps", "at least 1 step");
-  Require(num_objects >= 0, "num_objects", "a non-negative count");
-  Require(spawn_max_distance >= spawn_min_distance && spawn_min_distance >= 0, "spawn_max_distance",
-          "a distance ≥ spawn_min_distance ≥ 0");
-  Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
-  Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
+  walk.Validate();
+  object.Validate();
 }
 
 Skill::Skill(const SkillConfig& config, const SkillContext& context)
@@ -75,6 +69,8 @@ void Skill::SetStyleVector(int env_id, const Eigen::VectorXf& z) {
 }
 
 bool Skill::BeginInstruction(const sim::EnvView&, const InstructionTarget&) { return false; }
+
+double Skill::goal_error(const sim::EnvView&) const { return 0.0; }
 
 void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
   const auto& clips = ReferenceClips();
@@ -164,21 +160,45 @@ void Skill::LoadEnvState(int env_id, const std::vector<double>& s) {
 std::vector<double> Skill::SaveSkillState(int) const { return {}; }
 void Skill::LoadSkillState(int, const double*, size_t) {}
 
-const std::vector<SkillInfo>& GetSkills() {
-  static const std::vector<SkillInfo> skills = {
+namespace {
+
+// The built-in skills, one line each (skill_test checks that every built-in vocabulary entry
+// has one).
+std::deque<SkillInfo>& Registry() {
+  static std::deque<SkillInfo> skills = {
       WalkSkillInfo(),  SitSkillInfo(),      LieSkillInfo(),     ReachSkillInfo(),
       GetUpSkillInfo(), SitGetUpSkillInfo(), UnifiedSkillInfo(),
   };
   return skills;
 }
 
+}  // namespace
+
+const std::deque<SkillInfo>& GetSkills() { return Registry(); }
+
 const SkillInfo& FindSkill(const std::string& name) {
   std::string known;
   for (const auto& s : GetSkills()) {
-    if (s.name == name) return s;
-    known += (known.empty() ? "" : ", ") + s.name;
+    if (s.name() == name) return s;
+    known += (known.empty() ? "" : ", ") + s.name();
   }
   ThrowInputError("skill", "skill", "one of: " + known, "'" + name + "'");
+}
+
+const SkillInfo& RegisterSkill(SkillInfo info) {
+  auto& registry = Registry();
+  if (!info.create || !info.build_scene)
+    ThrowInputError("skill registry", info.name(), "a skill with create and build_scene",
+                    "a missing function");
+  RegisterSkillTraits(info.traits);  // throws when the name is taken
+  registry.push_back(std::move(info));
+  return registry.back();
+}
+
+SkillInfo BuiltinSkillInfo(const std::string& name) {
+  SkillInfo info;
+  info.traits = SkillTraitsOf(name);
+  return info;
 }
 
 SkillSetup CreateSkill(const SkillConfig& config, int num_envs, uint64_t seed,

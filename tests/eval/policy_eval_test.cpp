@@ -118,7 +118,7 @@ TEST(PolicyEvalTest, BadInputNamesTheProblem) {
 TEST(PolicyEvalTest, SitOnHeldOutObjects) {
   task::SkillConfig sc;
   sc.skill = "sit";
-  sc.num_objects = 2;
+  sc.object.num_objects = 2;
   const fs::path policy = TinyPolicy(sc, 30, "eval_sit");
   PolicyEvalOptions o = TwoEnvOptions(policy, 2);
   const PolicyEvalReport r = EvaluatePolicy(o);
@@ -133,7 +133,7 @@ TEST(PolicyEvalTest, SitOnHeldOutObjects) {
 TEST(PolicyEvalTest, UnifiedOnAScenePlan) {
   task::SkillConfig sc;
   sc.skill = "unified";
-  sc.num_objects = 2;
+  sc.object.num_objects = 2;
   const fs::path policy = TinyPolicy(sc, 30, "eval_unified");
   PolicyEvalOptions o = TwoEnvOptions(policy, 2);
   o.scene_plan = sims::testing::TestData("scene/sceneplan.json").string() + "#0000";
@@ -159,7 +159,8 @@ TEST(SkillConfigsTest, ShippedConfigsLoadAndCreateTheirSkills) {
     EXPECT_EQ(tc.skill.skill, name);
     EXPECT_LE(tc.env.num_envs, 128);   // CPU-sized
     tc.skill.motion.manifest.clear();  // the synthetic clips are generated at setup time
-    tc.skill.num_objects = static_cast<int>(std::max<size_t>(1, tc.skill.object_categories.size()));
+    tc.skill.object.num_objects =
+        static_cast<int>(std::max<size_t>(1, tc.skill.object.object_categories.size()));
     const auto setup = task::CreateSkill(tc.skill, 1, 1);
     EXPECT_EQ(setup.skill->name(), name);
   }

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "sims/scene/builtin.h"
-#include "sims/task/getup.h"
-#include "sims/task/reach.h"
-#include "sims/task/sit.h"
+#include "sims/task/getup/getup.h"
+#include "sims/task/reach/reach.h"
+#include "sims/task/sit/sit.h"
 
 namespace sims::task {
 namespace {

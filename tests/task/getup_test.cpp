@@ -1,4 +1,4 @@
-#include "sims/task/getup.h"
+#include "sims/task/getup/getup.h"
 
 #include <cmath>
 
@@ -17,8 +17,8 @@ using testing::ViewOf;
 SkillConfig GetUpConfig() {
   SkillConfig c;
   c.skill = "getup";
-  c.num_objects = 2;
-  c.object_categories = {"chair", "bed"};
+  c.object.num_objects = 2;
+  c.object.object_categories = {"chair", "bed"};
   c.motion.manifest = testing::SyntheticManifest({"getup"});
   c.motion.skills = {"getup"};
   return c;
@@ -91,7 +91,7 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
 
   SkillConfig c = GetUpConfig();
   c.reference_init_prob = 0;
-  c.max_contact_force = 0;
+  c.object.max_contact_force = 0;
   c.success_hold_steps = 2;
   auto s = MakeSkillEnv(c, 1);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
@@ -115,11 +115,11 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
 TEST(GetUpSkillTest, SitThenGetUpSwitchesGoalsInOneEpisode) {
   SkillConfig c = GetUpConfig();
   c.skill = "sit_getup";
-  c.object_categories = {"chair"};
+  c.object.object_categories = {"chair"};
   c.motion.manifest = testing::SyntheticManifest({"sit"});
   c.motion.skills = {"sit"};
   c.reference_init_prob = 0;
-  c.max_contact_force = 0;
+  c.object.max_contact_force = 0;
   c.success_hold_steps = 3;
   auto s = MakeSkillEnv(c, 1);
   auto* sg = dynamic_cast<GetUpSkill*>(s.setup.skill.get());

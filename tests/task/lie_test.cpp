@@ -1,4 +1,4 @@
-#include "sims/task/lie.h"
+#include "sims/task/lie/lie.h"
 
 #include <cmath>
 
@@ -18,8 +18,8 @@ using testing::ViewOf;
 SkillConfig LieConfig() {
   SkillConfig c;
   c.skill = "lie";
-  c.num_objects = 2;
-  c.contact_success_threshold = 0.3;
+  c.object.num_objects = 2;
+  c.object.contact_success_threshold = 0.3;
   c.motion.manifest = testing::SyntheticManifest({"lie"});
   c.motion.skills = {"lie"};
   return c;
@@ -68,7 +68,7 @@ TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
 TEST(LieSkillTest, GoalsRewardAndThreshold) {
   SkillConfig c = LieConfig();
   c.reference_init_prob = 0;
-  c.max_contact_force = 0;
+  c.object.max_contact_force = 0;
   auto s = MakeSkillEnv(c, 2);
   auto* lie = dynamic_cast<LieSkill*>(s.setup.skill.get());
   EXPECT_EQ(s.env->obs_dim(), 223 + 60 + 256 + 64);

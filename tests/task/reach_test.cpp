@@ -1,4 +1,4 @@
-#include "sims/task/reach.h"
+#include "sims/task/reach/reach.h"
 
 #include <cmath>
 
@@ -16,8 +16,8 @@ using testing::ViewOf;
 SkillConfig ReachConfig() {
   SkillConfig c;
   c.skill = "reach";
-  c.num_objects = 3;
-  c.object_categories = {"shelf", "table", "cabinet"};
+  c.object.num_objects = 3;
+  c.object.object_categories = {"shelf", "table", "cabinet"};
   c.motion.manifest = testing::SyntheticManifest({"reach"});
   c.motion.skills = {"reach"};
   return c;

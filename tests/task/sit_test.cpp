@@ -1,4 +1,4 @@
-#include "sims/task/sit.h"
+#include "sims/task/sit/sit.h"
 
 #include <cmath>
 #include <cstring>
@@ -39,8 +39,8 @@ TEST(ContactRewardTest, MatchesTheStatedFormula) {
 SkillConfig SitConfig() {
   SkillConfig c;
   c.skill = "sit";
-  c.num_objects = 4;
-  c.object_categories = {"chair", "sofa"};
+  c.object.num_objects = 4;
+  c.object.object_categories = {"chair", "sofa"};
   c.motion.manifest = testing::SyntheticManifest({"sit"});
   c.motion.skills = {"sit"};
   return c;
@@ -63,12 +63,12 @@ TEST(SitSkillTest, TrainingGroundAndObservation) {
     // Default init: standing spawn_min..spawn_max beyond the chosen object's footprint.
     const ObjectGeometry& g = sit->geometry(i);
     const double d = (s.env->pose(i).root_pos.head<2>() - g.center).norm();
-    EXPECT_GE(d, g.radius + c.spawn_min_distance - 1e-9);
-    EXPECT_LE(d, g.radius + c.spawn_max_distance + 1e-9);
+    EXPECT_GE(d, g.radius + c.object.spawn_min_distance - 1e-9);
+    EXPECT_LE(d, g.radius + c.object.spawn_max_distance + 1e-9);
     EXPECT_EQ(sit->goal_mask(i), 1u << sim::kCjPelvis);
     // The pelvis goal is the seat point nearest to the pelvis.
     const Eigen::Vector3d pelvis = s.env->bodies(i).pos[sim::kPelvis];
-    const Eigen::Vector3d seat = sit->SeatTarget(i, pelvis);
+    const Eigen::Vector3d seat = sit->PelvisTarget(i, pelvis);
     EXPECT_NEAR((sit->goal(i, sim::kCjPelvis) - seat).norm(), 0, 1e-9);
     const float* o = s.env->observations() + i * s.env->obs_dim() + 223;
     EXPECT_NEAR(Eigen::Vector3d(o[0], o[1], o[2]).norm(), (seat - pelvis).norm(), 1e-4);
@@ -102,7 +102,7 @@ TEST(SitSkillTest, SeatClipsLandOnTheSeat) {
       const Eigen::Vector3d pelvis = b.pos[sim::kPelvis];
       const Eigen::Vector3d seat =
           scene::NearestPointOnPart(scene.objects[g.object].parts[g.seat], pelvis);
-      EXPECT_LT((seat - pelvis).norm(), c.contact_success_threshold) << clipref.meta().name;
+      EXPECT_LT((seat - pelvis).norm(), c.object.contact_success_threshold) << clipref.meta().name;
       EXPECT_GT(pelvis.z(), g.seat_local.max.z()) << clipref.meta().name;
       ++checked;
     }
@@ -128,7 +128,7 @@ TEST(SitSkillTest, ReferenceInitStartsAtTheObject) {
 TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
   SkillConfig c = SitConfig();
   c.reference_init_prob = 0;
-  c.max_contact_force = 0;  // the standing pose above a seat pushes its legs through it
+  c.object.max_contact_force = 0;  // the standing pose above a seat pushes its legs through it
   auto s = MakeSkillEnv(c, 1);
   auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
   const ObjectGeometry& g = sit->geometry(0);
@@ -150,7 +150,7 @@ TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
   s.env->SetState(0, PoseAt(front, g.yaw + M_PI));
   const sim::TaskStepResult r = sit->Step(ViewOf(*s.env, 0));
   const Eigen::Vector3d pelvis = s.env->bodies(0).pos[sim::kPelvis];
-  const Eigen::Vector3d seat = sit->SeatTarget(0, pelvis);
+  const Eigen::Vector3d seat = sit->PelvisTarget(0, pelvis);
   const Eigen::Vector2d anchor = g.ToWorld(g.seat_local.center()).head<2>();
   const Eigen::Vector2d delta = anchor - pelvis.head<2>();
   const double dir_dot_facing =
@@ -165,7 +165,7 @@ TEST(SitSkillTest, SuccessHeldTruncatesAndForceTerminates) {
   SkillConfig c = SitConfig();
   c.reference_init_prob = 0;
   c.success_hold_steps = 3;
-  c.max_contact_force = 0;
+  c.object.max_contact_force = 0;
   auto s = MakeSkillEnv(c, 1);
   auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
   const ObjectGeometry& g = sit->geometry(0);
@@ -195,7 +195,7 @@ TEST(SitSkillTest, SuccessHeldTruncatesAndForceTerminates) {
 TEST(SitSkillTest, ExcessiveForceTerminates) {
   SkillConfig c = SitConfig();
   c.reference_init_prob = 0;
-  c.max_contact_force = 1.0;  // any floor contact exceeds 1 N
+  c.object.max_contact_force = 1.0;  // any floor contact exceeds 1 N
   auto s = MakeSkillEnv(c, 1);
   std::vector<float> zero(28, 0.0f);
   bool terminated = false;

@@ -1,4 +1,4 @@
-#include "sims/task/unified.h"
+#include "sims/task/unified/unified.h"
 
 #include <cmath>
 #include <cstring>
@@ -218,8 +218,8 @@ TEST(ContactPlanTest, BadPlansNameTheField) {
 SkillConfig UnifiedConfig() {
   SkillConfig c;
   c.skill = "unified";
-  c.num_objects = 3;
-  c.object_categories = {"armchair", "bed", "table"};
+  c.object.num_objects = 3;
+  c.object.object_categories = {"armchair", "bed", "table"};
   return c;
 }
 
@@ -266,7 +266,7 @@ TEST(UnifiedSkillTest, RandomChainsAndObservation) {
 
 TEST(UnifiedSkillTest, StepsAdvanceWithinTheEpisode) {
   SkillConfig c = UnifiedConfig();
-  c.max_contact_force = 0;
+  c.object.max_contact_force = 0;
   auto s = MakeSkillEnv(c, 1);
   auto* u = dynamic_cast<UnifiedSkill*>(s.setup.skill.get());
   const ObjectGeometry& g = u->objects()[0];

@@ -1,4 +1,4 @@
-#include "sims/task/walk.h"
+#include "sims/task/walk/walk.h"
 
 #include <cmath>
 #include <cstring>
@@ -38,8 +38,8 @@ class WalkEnvTest : public ::testing::Test {
  protected:
   void SetUp() override {
     SkillConfig c;
-    c.target_min_distance = 3;
-    c.target_max_distance = 5;
+    c.walk.target_min_distance = 3;
+    c.walk.target_max_distance = 5;
     setup_ = CreateSkill(c, 4, 1);
     sim::EnvConfig ec;
     ec.num_envs = 4;

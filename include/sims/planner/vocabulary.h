@@ -14,10 +14,13 @@
 
 namespace sims::planner {
 
-/// The five skills the motion library can execute.
+/// The planner's script grammar: the skill vocabulary's scripted skills (core/skill_vocabulary.h),
+/// in its order. Composition rules (postures, inserted walks and get-ups) are written over these.
 enum class Skill { kWalk, kSit, kLie, kReach, kGetUp };
+/// Number of Skill values.
+inline constexpr int kNumSkills = 5;
 
-/// Canonical lower-case name ("walk", "sit", "lie", "reach", "getup").
+/// Canonical lower-case name, from the skill vocabulary ("walk", "sit", "lie", "reach", "getup").
 const char* SkillName(Skill skill);
 
 /// True for sit, lie and reach (keyframes that touch an object).
@@ -134,7 +137,7 @@ struct TermMatch {
 /// The whole vocabulary; load with Vocabulary::Load, then query.
 class Vocabulary {
  public:
-  std::vector<SkillSpec> skills;                ///< Exactly the five skills.
+  std::vector<SkillSpec> skills;                ///< Exactly the scripted skills.
   std::vector<FurnitureSpec> furniture;         ///< Known furniture categories ("floor" included).
   std::vector<SubstitutionSpec> substitutions;  ///< Fault-tolerant category substitutions.
   std::vector<EmotionSpec> emotions;            ///< Eight emotions plus neutral.

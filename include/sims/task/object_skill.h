@@ -22,9 +22,9 @@ inline constexpr double kTrainingGroundSpacing = 12.0;
 /// Seat/bed heights of a clip and an object may differ this much for reference init (m).
 inline constexpr double kMaxClipHeightMismatch = 0.05;
 
-/// Builds a training ground: `config.num_objects` (≥ 1) pieces cycling through
-/// `config.object_categories` (or `default_categories` when empty) with random dimensions
-/// (held-out ranges when config.held_out_objects), on a grid with kTrainingGroundSpacing.
+/// Builds a training ground: `config.object.num_objects` (≥ 1) pieces cycling through
+/// `config.object.object_categories` (or `default_categories` when empty) with random dimensions
+/// (held-out ranges when config.object.held_out_objects), on a grid with kTrainingGroundSpacing.
 scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
                                  const std::vector<std::string>& default_categories);
 
@@ -103,6 +103,8 @@ class ObjectSkill : public Skill {
   void SetObjectOverride(int env_id, int k);
   /// The distance the success test compares with its threshold at the last step (m).
   double goal_error(int env_id) const { return error_[env_id]; }
+  /// goal_error(view.env_id).
+  double goal_error(const sim::EnvView& view) const override { return error_[view.env_id]; }
   /// Consecutive steps the success condition has held.
   int hold(int env_id) const { return hold_[env_id]; }
   /// Net contact force on the humanoid (N) after the last physics step of `view`.
@@ -111,7 +113,7 @@ class ObjectSkill : public Skill {
  protected:
   /// Whether scene object `g` suits the skill.
   virtual bool Accepts(const ObjectGeometry& g) const = 0;
-  /// Fills objects() with the accepted scene objects (of config.object_categories when set);
+  /// Fills objects() with the accepted scene objects (of config.object.object_categories when set);
   /// derived constructors call it last. Throws sims::Error naming the scene when none fits.
   void CollectObjects(const std::string& what);
   /// Index in objects() of scene object `scene_object`, or −1 when the skill does not use it.

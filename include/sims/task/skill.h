@@ -5,10 +5,12 @@
 //   [style embedding z: 64, zero when the skill is not text-conditioned]
 // A skill fills per-env goals; the base class turns them into observations, handles the
 // hybrid reference-state initialisation from the motion library, style ids for conditional
-// AMP and bit-exact state snapshots. Walk (walk.h) is the fully commented reference skill.
+// AMP and bit-exact state snapshots. Walk (walk/walk.h) is the fully commented reference skill;
+// a skill is one folder (src/task/<skill>/, include/sims/task/<skill>/) plus one registry line.
 #pragma once
 
 #include <array>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -17,12 +19,16 @@
 #include <Eigen/Core>
 
 #include "sims/core/config.h"
+#include "sims/core/skill_vocabulary.h"
 #include "sims/motion/motion_library.h"
 #include "sims/scene/height_grid.h"
 #include "sims/scene/ray_caster.h"
 #include "sims/scene/scene.h"
 #include "sims/sim/env.h"
+#include "sims/task/object_params.h"
+#include "sims/task/sit/sit_params.h"
 #include "sims/task/styles.h"
+#include "sims/task/walk/walk_params.h"
 
 namespace sims::task {
 
@@ -45,7 +51,8 @@ struct MotionDataConfig {
   }
 };
 
-/// Settings shared by all skills (each skill reads the fields it needs).
+/// A skill's training and task settings: the fields every skill reads, then each skill's own
+/// params struct (declared beside the skill). JSON keys are flat, as policy files store them.
 struct SkillConfig {
   std::string skill = "walk";        ///< Registry name.
   MotionDataConfig motion;           ///< Demonstrations.
@@ -54,24 +61,13 @@ struct SkillConfig {
   std::string style_model;  ///< Motion–text model dir: text-aligned z per clip ("" = name codes).
   double reference_init_prob = 0.5;          ///< Hybrid init: P(reference state).
   double reference_init_max_fraction = 1.0;  ///< Reference times in [0, f·duration].
-  // Walk.
-  double target_speed = 1.0;               ///< v* (m/s).
-  double target_min_distance = 0.5;        ///< Walk targets at least this far (m).
-  double target_max_distance = 5.0;        ///< ... and at most this far (m).
-  double walk_success_radius = 0.5;        ///< Reached when within this (m, xy).
-  int success_hold_steps = 15;             ///< Steps success must hold before switching.
-  bool resample_target_on_success = true;  ///< New walk target after a held success.
-  // Object skills.
-  std::vector<std::string> object_categories;  ///< Procedural categories to train on.
-  int num_objects = 16;                        ///< Objects in the training ground.
-  bool held_out_objects = false;               ///< Held-out dimension ranges (evaluation).
-  double spawn_min_distance = 1.0;             ///< Character spawn distance from the object (m).
-  double spawn_max_distance = 4.0;             ///< ... (m).
-  double contact_success_threshold = 0.2;      ///< Sit/reach 0.20 m, lie 0.30 m.
-  double max_contact_force = 1e4;  ///< Net contact force (N) that ends an episode (0 = off).
-  bool sit_back_contact = false;   ///< Sit: also reward the torso touching the back rest.
+  double target_speed = 1.0;                 ///< v* towards the goal (m/s).
+  int success_hold_steps = 15;               ///< Steps success must hold before switching.
+  WalkParams walk;                           ///< Walk (walk/walk_params.h).
+  ObjectParams object;                       ///< Object skills (object_params.h).
+  SitParams sit;                             ///< Sit (sit/sit_params.h).
 
-  /// Lists the fields for JSON binding.
+  /// Lists the fields for JSON binding (the params structs' keys inline).
   template <class A>
   void Serialize(A* a) {
     a->Visit(SIMS_NVP(skill));
@@ -82,21 +78,12 @@ struct SkillConfig {
     a->Visit(SIMS_NVP(reference_init_prob));
     a->Visit(SIMS_NVP(reference_init_max_fraction));
     a->Visit(SIMS_NVP(target_speed));
-    a->Visit(SIMS_NVP(target_min_distance));
-    a->Visit(SIMS_NVP(target_max_distance));
-    a->Visit(SIMS_NVP(walk_success_radius));
     a->Visit(SIMS_NVP(success_hold_steps));
-    a->Visit(SIMS_NVP(resample_target_on_success));
-    a->Visit(SIMS_NVP(object_categories));
-    a->Visit(SIMS_NVP(num_objects));
-    a->Visit(SIMS_NVP(held_out_objects));
-    a->Visit(SIMS_NVP(spawn_min_distance));
-    a->Visit(SIMS_NVP(spawn_max_distance));
-    a->Visit(SIMS_NVP(contact_success_threshold));
-    a->Visit(SIMS_NVP(max_contact_force));
-    a->Visit(SIMS_NVP(sit_back_contact));
+    walk.Serialize(a);
+    object.Serialize(a);
+    sit.Serialize(a);
   }
-  /// Checks ranges.
+  /// Checks ranges (the params structs' too).
   void Validate() const;
 };
 
@@ -161,6 +148,9 @@ class Skill : public sim::TaskHook {
   /// the character's current state without resetting it. Returns false when the skill cannot
   /// pursue that target (e.g. an object without the part it needs).
   virtual bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target);
+  /// The distance (m) env view.env_id's success test compares with its threshold, for
+  /// evaluation and story metrics; 0 for a skill without one.
+  virtual double goal_error(const sim::EnvView& view) const;
   /// The configuration.
   const SkillConfig& config() const { return config_; }
   /// The context.
@@ -184,20 +174,33 @@ class Skill : public sim::TaskHook {
   std::vector<int> reference_clips_;
 };
 
-/// A registered skill.
+/// A registered skill: its vocabulary entry (name, verbs, traits) bound to its code.
 struct SkillInfo {
-  std::string name;         ///< Registry key (walk, sit, lie, reach, getup, unified).
-  std::string description;  ///< One line for --help.
+  SkillTraits traits;  ///< What other modules know about it (core/skill_vocabulary.h).
+  /// Its own config keys with their defaults (the params structs it reads, as JSON).
+  nlohmann::json params = nlohmann::json::object();
   /// Builds the scene the skill trains in (empty floor for walk, procedural objects else).
   std::function<scene::Scene(const SkillConfig&, Rng&)> build_scene;
   /// Creates the skill.
   std::function<std::shared_ptr<Skill>(const SkillConfig&, const SkillContext&)> create;
+  /// Turns a trained config into the evaluation one (eval_policy); empty = unchanged.
+  std::function<void(SkillConfig*)> configure_eval;
+
+  /// Registry key.
+  const std::string& name() const { return traits.name; }
 };
 
-/// The explicit skill registry (mujoco_mpc style GetTasks()).
-const std::vector<SkillInfo>& GetSkills();
+/// The explicit skill registry (mujoco_mpc style GetTasks()): the built-in skills, then the
+/// registered ones. References stay valid.
+const std::deque<SkillInfo>& GetSkills();
 /// Registry lookup; throws sims::Error listing the known names.
 const SkillInfo& FindSkill(const std::string& name);
+/// Adds a skill (tests, plugins) to the registry and its traits to the skill vocabulary; from
+/// then on train, eval and the FSM run it by name. Throws when the name is taken. Not
+/// thread-safe: register before anything runs.
+const SkillInfo& RegisterSkill(SkillInfo info);
+/// A SkillInfo holding the vocabulary entry `name`; a built-in skill's folder adds its code.
+SkillInfo BuiltinSkillInfo(const std::string& name);
 
 /// A ready-to-run skill: model, scene, grids, motions and the hook.
 struct SkillSetup {

@@ -8,7 +8,7 @@
 // Everything per env lives in vectors indexed by env id: the environment calls these methods
 // for different envs from different OpenMP threads at once, so a skill must never touch
 // another env's slot or any shared mutable state.
-#include "sims/task/walk.h"
+#include "sims/task/walk/walk.h"
 
 #include <cmath>
 
@@ -46,7 +46,8 @@ Eigen::Vector2d WalkSkill::SampleTarget(const Eigen::Vector2d& from, Rng& rng) c
   const auto& grid = *context_.height_grid;
   Eigen::Vector2d best = from;
   for (int attempt = 0; attempt < 32; ++attempt) {
-    const double r = rng.Uniform(config_.target_min_distance, config_.target_max_distance);
+    const double r =
+        rng.Uniform(config_.walk.target_min_distance, config_.walk.target_max_distance);
     const double a = rng.Uniform(-M_PI, M_PI);
     const Eigen::Vector2d p = from + r * Eigen::Vector2d(std::cos(a), std::sin(a));
     best = p;
@@ -92,6 +93,10 @@ bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarg
   return true;
 }
 
+double WalkSkill::goal_error(const sim::EnvView& view) const {
+  return (target_[view.env_id] - view.pose->root_pos.head<2>()).norm();
+}
+
 double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& root,
                          const Eigen::Vector2d& velocity, const Eigen::Vector2d& prev_velocity,
                          const Eigen::Vector2d& facing, double target_speed) {
@@ -121,9 +126,9 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   r.reward = static_cast<float>(
       Reward(target_[i], root, vel, prev_velocity_[i], facing, config_.target_speed));
   prev_velocity_[i] = vel;
-  r.success = (target_[i] - root).norm() < config_.walk_success_radius;
+  r.success = (target_[i] - root).norm() < config_.walk.success_radius;
   hold_[i] = r.success ? hold_[i] + 1 : 0;
-  if (hold_[i] >= config_.success_hold_steps && config_.resample_target_on_success)
+  if (hold_[i] >= config_.success_hold_steps && config_.walk.resample_target_on_success)
     SetTarget(i, SampleTarget(root, target_rng_[i]));
   return r;
 }
@@ -151,10 +156,16 @@ void WalkSkill::LoadSkillState(int env_id, const double* d, size_t size) {
   target_rng_[env_id].set_state(st);
 }
 
+void WalkParams::Validate() const {
+  Require(target_min_distance >= 0 && target_max_distance >= target_min_distance,
+          "target_max_distance", "a distance ≥ target_min_distance ≥ 0");
+  Require(success_radius > 0, "walk_success_radius", "a positive radius (m)");
+}
+
+// The registry entry: vocabulary traits (core/skill_vocabulary.cpp), params, scene, factory.
 SkillInfo WalkSkillInfo() {
-  SkillInfo info;
-  info.name = "walk";
-  info.description = "walk to a target on free floor in a style, then stand still";
+  SkillInfo info = BuiltinSkillInfo("walk");
+  info.params = ConfigToJson(WalkParams{});
   info.build_scene = [](const SkillConfig&, Rng&) {
     scene::Scene s;
     s.name = "flat_ground";
@@ -162,6 +173,12 @@ SkillInfo WalkSkillInfo() {
   };
   info.create = [](const SkillConfig& c, const SkillContext& ctx) -> std::shared_ptr<Skill> {
     return std::make_shared<WalkSkill>(c, ctx);
+  };
+  // Evaluation: one fixed target 3–5 m away per episode.
+  info.configure_eval = [](SkillConfig* c) {
+    c->walk.target_min_distance = 3.0;
+    c->walk.target_max_distance = 5.0;
+    c->walk.resample_target_on_success = false;
   };
   return info;
 }

@@ -1,4 +1,4 @@
-#include "sims/task/unified.h"
+#include "sims/task/unified/unified.h"
 
 #include <algorithm>
 #include <cmath>
@@ -233,7 +233,7 @@ sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
   for (const auto& v : b.lin_vel) max_l1 = std::max(max_l1, v.cwiseAbs().sum());
   still_[i] = max_l1 < kStillVelocityL1 ? still_[i] + 1 : 0;
   const bool big_force =
-      config_.max_contact_force > 0 && ContactForce(view) > config_.max_contact_force;
+      config_.object.max_contact_force > 0 && ContactForce(view) > config_.object.max_contact_force;
   const StepCheck check = CheckUniHsiStep(st.types(), sr, big_force, still_[i]);
   error_[i] = StepContactError(st, pairs, b);
 
@@ -307,9 +307,8 @@ size_t UnifiedSkill::LoadTaskState(int i, const double* d, size_t size) {
 }
 
 SkillInfo UnifiedSkillInfo() {
-  SkillInfo info;
-  info.name = "unified";
-  info.description = "one policy for chains of contacts (UniHSI): sit, lean, lie, touch, walk";
+  SkillInfo info = BuiltinSkillInfo("unified");
+  info.params = ConfigToJson(ObjectParams{});
   info.build_scene = [](const SkillConfig& c, Rng& rng) {
     return BuildTrainingGround(c, rng, UnifiedCategories());
   };

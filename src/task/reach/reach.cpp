@@ -1,4 +1,4 @@
-#include "sims/task/reach.h"
+#include "sims/task/reach/reach.h"
 
 #include <cmath>
 
@@ -127,7 +127,7 @@ sim::TaskStepResult ReachSkill::Step(const sim::EnvView& view) {
   const double r = ContactReward(target_[i].head<2>(), view.pose->root_pos.head<2>(),
                                  view.pose->root_lin_vel.head<2>(), FacingOf(*view.pose),
                                  config_.target_speed, d2);
-  return Finish(view, r, error_[i] < config_.contact_success_threshold);
+  return Finish(view, r, error_[i] < config_.object.contact_success_threshold);
 }
 
 void ReachSkill::SaveTaskState(int i, std::vector<double>* out) const {
@@ -143,9 +143,8 @@ size_t ReachSkill::LoadTaskState(int i, const double* d, size_t size) {
 }
 
 SkillInfo ReachSkillInfo() {
-  SkillInfo info;
-  info.name = "reach";
-  info.description = "touch a point on a table, desk, cabinet, shelf or wardrobe with one hand";
+  SkillInfo info = BuiltinSkillInfo("reach");
+  info.params = ConfigToJson(ObjectParams{});
   info.build_scene = [](const SkillConfig& c, Rng& rng) {
     return BuildTrainingGround(c, rng, ReachCategories());
   };

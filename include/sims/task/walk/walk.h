@@ -1,4 +1,4 @@
-// Walk: the reference skill. Copy this file to write a new one.
+// Walk: the reference skill. Copy this folder to write a new one (README "Add a skill").
 //
 // Goal: the pelvis reaches a target point on free floor, moving at about target_speed, facing
 // the way it goes, and then stands still (SIMS supplementary):
@@ -27,6 +27,8 @@ class WalkSkill : public Skill {
   sim::TaskStepResult Step(const sim::EnvView& view) override;
   /// Walks to target.point (xy), or to the object's centre when only an object is given.
   bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
+  /// Pelvis-to-target distance (xy).
+  double goal_error(const sim::EnvView& view) const override;
 
   /// Sets env i's target (world xy; z is ignored) — used by the FSM and evaluation.
   void SetTarget(int env_id, const Eigen::Vector2d& target_xy);

@@ -1,11 +1,11 @@
-#include "sims/task/getup.h"
+#include "sims/task/getup/getup.h"
 
 #include <cmath>
 #include <limits>
 
 #include "sims/core/error.h"
 #include "sims/sim/features.h"
-#include "sims/task/sit.h"
+#include "sims/task/sit/sit.h"
 
 namespace sims::task {
 
@@ -217,7 +217,7 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
     error_[i] = d;
     const Eigen::Vector2d anchor = g.ToWorld(g.seat_local.center()).head<2>();
     const double r = ContactReward(anchor, root, vel, facing, config_.target_speed, d * d);
-    sit_hold_[i] = d < config_.contact_success_threshold ? sit_hold_[i] + 1 : 0;
+    sit_hold_[i] = d < config_.object.contact_success_threshold ? sit_hold_[i] + 1 : 0;
     if (sit_hold_[i] >= config_.success_hold_steps) StartGetUp(i, b);
     return Finish(view, r, false);
   }
@@ -226,7 +226,7 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
   double r = 0;
   if (phase_[i] == kFeetPhase) {
     r = 0.5 * ContactReward(stand_[i], root, vel, facing, config_.target_speed, sq);
-    if (mx < config_.contact_success_threshold) {
+    if (mx < config_.object.contact_success_threshold) {
       phase_[i] = kRisePhase;
       SetGetUpGoals(i, b, &sq, &mx);
     }
@@ -254,9 +254,8 @@ size_t GetUpSkill::LoadTaskState(int i, const double* d, size_t size) {
 }
 
 SkillInfo GetUpSkillInfo() {
-  SkillInfo info;
-  info.name = "getup";
-  info.description = "get up from a seat, a bed or the floor and stand";
+  SkillInfo info = BuiltinSkillInfo("getup");
+  info.params = ConfigToJson(ObjectParams{});
   info.build_scene = [](const SkillConfig& c, Rng& rng) {
     std::vector<std::string> cats = SeatCategories();
     cats.push_back("bed");
@@ -269,9 +268,8 @@ SkillInfo GetUpSkillInfo() {
 }
 
 SkillInfo SitGetUpSkillInfo() {
-  SkillInfo info;
-  info.name = "sit_getup";
-  info.description = "sit down, then get up again, in one episode (sit and get-up together)";
+  SkillInfo info = BuiltinSkillInfo("sit_getup");
+  info.params = ConfigToJson(ObjectParams{});
   info.build_scene = [](const SkillConfig& c, Rng& rng) {
     return BuildTrainingGround(c, rng, SeatCategories());
   };

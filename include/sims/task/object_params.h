@@ -1,0 +1,37 @@
+// Settings of the skills that interact with furniture (object_skill.h: sit, lie, reach, get-up,
+// unified), part of task::SkillConfig and bound flat like walk/walk_params.h.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sims/core/config.h"
+
+namespace sims::task {
+
+/// The training ground, spawn distances and the success/force thresholds of object skills.
+struct ObjectParams {
+  std::vector<std::string> object_categories;  ///< Procedural categories to train on.
+  int num_objects = 16;                        ///< Objects in the training ground.
+  bool held_out_objects = false;               ///< Held-out dimension ranges (evaluation).
+  double spawn_min_distance = 1.0;             ///< Character spawn distance from the object (m).
+  double spawn_max_distance = 4.0;             ///< ... (m).
+  double contact_success_threshold = 0.2;      ///< Sit/reach 0.20 m, lie 0.30 m.
+  double max_contact_force = 1e4;  ///< Net contact force (N) that ends an episode (0 = off).
+
+  /// Lists the fields for JSON binding (keys as in the skill config).
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(object_categories));
+    a->Visit(SIMS_NVP(num_objects));
+    a->Visit(SIMS_NVP(held_out_objects));
+    a->Visit(SIMS_NVP(spawn_min_distance));
+    a->Visit(SIMS_NVP(spawn_max_distance));
+    a->Visit(SIMS_NVP(contact_success_threshold));
+    a->Visit(SIMS_NVP(max_contact_force));
+  }
+  /// Checks ranges.
+  void Validate() const;
+};
+
+}  // namespace sims::task
