@@ -1,40 +1,18 @@
 #include "sims/fsm/instruction.h"
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 
 #include "sims/core/error.h"
 #include "sims/core/skill_vocabulary.h"
 #include "sims/fsm/navigation.h"
+#include "sims/planner/sentence.h"
 #include "sims/scene/contact_targets.h"
 #include "sims/sim/humanoid.h"
 
 namespace sims::fsm {
 
 namespace {
-std::vector<std::string> Words(const std::string& text) {
-  std::vector<std::string> out;
-  std::string w;
-  for (char c : text) {
-    if (std::isalpha(static_cast<unsigned char>(c))) {
-      w += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    } else if (!w.empty()) {
-      out.push_back(w);
-      w.clear();
-    }
-  }
-  if (!w.empty()) out.push_back(w);
-  return out;
-}
-
-bool HasAny(const std::vector<std::string>& words, std::initializer_list<const char*> keys) {
-  for (const auto& w : words)
-    for (const char* k : keys)
-      if (w == k) return true;
-  return false;
-}
-
 // The first vocabulary skill with a trait (a story's walk, the ScenePlan runner).
 template <class Pred>
 std::string SkillWith(Pred pred) {
@@ -55,19 +33,6 @@ std::optional<Eigen::Vector2d> RoomCentre(const scene::Scene& scene, const std::
   return std::nullopt;
 }
 }  // namespace
-
-std::string ReachHeightFromCaption(const std::string& caption) {
-  const auto w = Words(caption);
-  if (HasAny(w, {"low", "lower", "floor", "ground", "bottom", "down", "pick", "bend", "knee"}))
-    return "low";
-  if (HasAny(w, {"high", "higher", "top", "upper", "shelf", "up", "above", "overhead", "tiptoe"}))
-    return "high";
-  return "medium";
-}
-
-int ReachHandFromCaption(const std::string& caption) {
-  return HasAny(Words(caption), {"left"}) ? sim::kCjLeftHand : sim::kCjRightHand;
-}
 
 int FindObjectIndex(const scene::Scene& scene, const std::string& instance) {
   for (size_t i = 0; i < scene.objects.size(); ++i)
@@ -119,8 +84,9 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
         in.note = "walk keyframe without an object or a room to walk to";
       }
     } else if (traits.hand_target) {
-      in.target.hand = ReachHandFromCaption(k.caption);
-      in.target.height = ReachHeightFromCaption(k.caption);
+      in.target.hand =
+          planner::ReachUsesLeftHand(k.caption) ? sim::kCjLeftHand : sim::kCjRightHand;
+      in.target.height = planner::ReachHeightFromCaption(k.caption);
     }
     if (traits.needs_object && obj < 0 && in.placed) {
       in.placed = false;

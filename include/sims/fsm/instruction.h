@@ -30,13 +30,6 @@ struct Instruction {
   std::string note;    ///< Why it is unplaced, or remarks.
 };
 
-/// Reach height from a caption ("low" for floor/bottom/low/pick up..., "high" for
-/// top/high/shelf/up..., else "medium").
-std::string ReachHeightFromCaption(const std::string& caption);
-
-/// Reach hand from a caption: kCjLeftHand when it says "left", else kCjRightHand.
-int ReachHandFromCaption(const std::string& caption);
-
 /// Index of an object instance in the scene, or −1.
 int FindObjectIndex(const scene::Scene& scene, const std::string& instance);
 
