@@ -84,8 +84,7 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
         in.note = "walk keyframe without an object or a room to walk to";
       }
     } else if (traits.hand_target) {
-      in.target.hand =
-          planner::ReachUsesLeftHand(k.caption) ? sim::kCjLeftHand : sim::kCjRightHand;
+      in.target.hand = planner::ReachUsesLeftHand(k.caption) ? sim::kCjLeftHand : sim::kCjRightHand;
       in.target.height = planner::ReachHeightFromCaption(k.caption);
     }
     if (traits.needs_object && obj < 0 && in.placed) {

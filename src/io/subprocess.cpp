@@ -1,5 +1,7 @@
 #include "sims/io/subprocess.h"
 
+#include "sims/core/environment.h"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -248,8 +250,9 @@ bool ProgramAvailable(const std::string& program) {
     return stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(p.c_str(), X_OK) == 0;
   };
   if (program.find('/') != std::string::npos) return executable(program);
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  // $PATH as read at start-up (core/environment.h), as exec would search it.
+  std::string dirs = InstalledEnvironment().Variable("PATH");
+  if (dirs.empty()) dirs = "/usr/local/bin:/usr/bin:/bin";
   std::size_t start = 0;
   while (start <= dirs.size()) {
     const std::size_t end = dirs.find(':', start);

@@ -31,8 +31,8 @@ struct Environment {
   std::string LlmApiKey(const std::string& key_variable = "SIMS_LLM_API_KEY") const;
 };
 
-/// Reads the process environment: the one getenv/environ reader of the library (apart from
-/// subprocess' PATH lookup, which is how exec finds programs).
+/// Reads the process environment: the one getenv/environ reader of the library (subprocess
+/// copies environ into a child's environment, and looks programs up in the installed PATH).
 Environment ReadEnvironment();
 
 /// Installs the process-wide settings that paths.h, the scene loaders and the viewer use.
