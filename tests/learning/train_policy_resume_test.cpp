@@ -102,6 +102,16 @@ std::vector<std::string> DeterministicRows(const fs::path& csv) {
   return rows;
 }
 
+// Same rows; on a difference, names the first differing row instead of printing both logs.
+void ExpectSameRows(const std::vector<std::string>& got, const std::vector<std::string>& want) {
+  EXPECT_EQ(got.size(), want.size());
+  for (size_t r = 0; r < std::min(got.size(), want.size()); ++r)
+    if (got[r] != want[r]) {
+      ADD_FAILURE() << "log row " << r << " differs:\n  got  " << got[r] << "\n  want " << want[r];
+      return;
+    }
+}
+
 TEST(TrainPolicyResumeTest, KilledAmpRunResumesToTheUninterruptedResult) {
   const auto dir = sims::testing::TempDir("resume_amp");
   const int kIterations = 24;
@@ -137,7 +147,7 @@ TEST(TrainPolicyResumeTest, KilledAmpRunResumesToTheUninterruptedResult) {
   const auto straight_rows = DeterministicRows(dir / "straight" / "log.csv");
   const auto resumed_rows = DeterministicRows(out / "log.csv");
   ASSERT_EQ(straight_rows.size(), kIterations + 1u);
-  EXPECT_EQ(resumed_rows, straight_rows);
+  ExpectSameRows(resumed_rows, straight_rows);
   EXPECT_TRUE(ReadText(out / "policy.pt") == ReadText(dir / "straight" / "policy.pt"))
       << "policy.pt differs";
   // checkpoint.pt cannot be compared byte for byte (libtorch keys the optimiser state by
@@ -149,7 +159,8 @@ TEST(TrainPolicyResumeTest, KilledAmpRunResumesToTheUninterruptedResult) {
               dir / "more.log"),
         0)
         << ReadText(dir / "more.log");
-  EXPECT_EQ(DeterministicRows(out / "log.csv"), DeterministicRows(dir / "straight" / "log.csv"));
+  ExpectSameRows(DeterministicRows(out / "log.csv"),
+                 DeterministicRows(dir / "straight" / "log.csv"));
   EXPECT_TRUE(ReadText(out / "policy.pt") == ReadText(dir / "straight" / "policy.pt"))
       << "policy.pt differs after 3 more iterations";
 }
