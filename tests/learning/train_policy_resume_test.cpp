@@ -130,7 +130,9 @@ TEST(TrainPolicyResumeTest, KilledAmpRunResumesToTheUninterruptedResult) {
     io::Subprocess run(TrainArgs(args), LogTo(dir / "killed.log"));
     const auto t0 = std::chrono::steady_clock::now();
     while (!(fs::exists(out / "checkpoint.pt") && CompleteLines(out / "log.csv") >= 4)) {
-      ASSERT_TRUE(run.running()) << ReadText(dir / "killed.log");
+      int code = 0;
+      ASSERT_FALSE(run.WaitFor(0, &code))
+          << "exited (" << code << ") " << ReadText(dir / "killed.log");
       ASSERT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(120))
           << ReadText(dir / "killed.log");
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
