@@ -48,9 +48,12 @@ function(sims_app name)
   target_link_libraries(${name} PRIVATE sims CLI11::CLI11)
 endfunction()
 
-# sims_test(<module> SOURCES ... [TORCH]): one GoogleTest binary per module.
+# sims_test(<module> SOURCES ... [TORCH] [FAST]): one GoogleTest binary per module. FAST adds
+# the ctest label `fast` and puts the binary under the `fast_tests` target: the torch-free
+# modules whose whole suite runs in seconds, which the sanitizer job (preset `asan`) builds
+# and runs without the slow torch and training tests.
 function(sims_test module)
-  cmake_parse_arguments(T "TORCH" "" "SOURCES" ${ARGN})
+  cmake_parse_arguments(T "TORCH;FAST" "" "SOURCES" ${ARGN})
   set(target ${module}_tests)
   sims_require_sources(${T_SOURCES})
   add_executable(${target} ${T_SOURCES})
@@ -62,4 +65,15 @@ function(sims_test module)
   gtest_discover_tests(${target} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60
                        WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
                        PROPERTIES LABELS ${module})
+  if(T_FAST)
+    # gtest_discover_tests passes one label value through, not a list: a second include file,
+    # read by ctest after the discovered tests exist, relabels them.
+    set(relabel ${CMAKE_CURRENT_BINARY_DIR}/${target}_fast_label.cmake)
+    file(WRITE ${relabel}
+         "foreach(t IN LISTS ${target}_TESTS)\n"
+         "  set_tests_properties(\"\${t}\" PROPERTIES LABELS \"${module};fast\")\n"
+         "endforeach()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${relabel})
+    set_property(GLOBAL APPEND PROPERTY SIMS_FAST_TESTS ${target})
+  endif()
 endfunction()

@@ -9,6 +9,8 @@ export DEBIAN_FRONTEND=noninteractive
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config git clang-format
+  # libFuzzer harnesses (tools/fuzz.sh): clang and its sanitizer/fuzzer runtimes
+  clang libclang-rt-dev
   # libraries (headers + imported CMake targets)
   libeigen3-dev libmujoco-dev libqhull-dev libtorch-dev libembree-dev libassimp-dev
   nlohmann-json3-dev libspdlog-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev

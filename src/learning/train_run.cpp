@@ -1,8 +1,10 @@
 #include "sims/learning/train_run.h"
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <sstream>
 
@@ -77,16 +79,30 @@ std::string CsvHeader() {
   return header;
 }
 
+// The iteration cell of a log row: all digits (std::stoll would also take "7x" or "2.5" as 7
+// and 2, and throws std::invalid_argument, not a project error, on others).
+std::optional<int64_t> ParseIteration(const std::string& cell) {
+  int64_t v = 0;
+  const char* end = cell.data() + cell.size();
+  const auto [ptr, ec] = std::from_chars(cell.data(), end, v);
+  if (cell.empty() || ec != std::errc() || ptr != end || v < 0) return std::nullopt;
+  return v;
+}
+
 // After a crash the log may hold rows past the last checkpoint; drop them so the resumed run
-// appends exactly once per iteration. A log of an older layout (fewer trailing columns) gets
-// the current header; its short rows read as missing values.
+// appends exactly once per iteration. A last line without its newline was cut off mid-write
+// by the crash and is dropped too. A log of an older layout (fewer trailing columns) gets the
+// current header; its short rows read as missing values.
 void TruncateLog(const std::filesystem::path& csv, int64_t last_iteration) {
-  std::ifstream in(csv);
+  std::ifstream in(csv, std::ios::binary);
   if (!in) return;
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!text.empty() && text.back() != '\n') text.erase(text.rfind('\n') + 1);
+  std::istringstream lines(text);
   std::string line, kept;
   bool header = true;
   int64_t lineno = 0;
-  while (std::getline(in, line)) {
+  while (std::getline(lines, line)) {
     ++lineno;
     if (header) {
       const std::string current = CsvHeader();
@@ -98,15 +114,14 @@ void TruncateLog(const std::filesystem::path& csv, int64_t last_iteration) {
       continue;
     }
     if (line.empty()) continue;
-    int64_t iteration = 0;
-    try {
-      iteration = std::stoll(line.substr(0, line.find(',')));
-    } catch (const std::exception&) {
+    const std::string cell = line.substr(0, line.find(','));
+    const std::optional<int64_t> iteration = ParseIteration(cell);
+    if (!iteration)
       ThrowInputError(csv.string(), "line " + std::to_string(lineno) + ", column iteration",
-                      "an integer", line.substr(0, line.find(',')));
-    }
-    if (iteration <= last_iteration) kept += line + "\n";
+                      "a non-negative integer (the log train_policy writes)", "'" + cell + "'");
+    if (*iteration <= last_iteration) kept += line + "\n";
   }
+  if (header) kept = CsvHeader() + "\n";  // not even the header survived
   WriteFileAtomic(csv, kept);
 }
 

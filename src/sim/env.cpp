@@ -342,6 +342,9 @@ class ByteReader {
     const size_t bytes = sizeof(T) * n;
     if (pos_ + bytes > in_.size())
       ThrowInputError("environment state", "", "a snapshot of this environment", "truncated data");
+    // Empty arrays (no actuator activations, no task state) may have a null data pointer,
+    // which memcpy must not get even for 0 bytes (UBSan: nonnull argument).
+    if (bytes == 0) return;
     std::memcpy(p, in_.data() + pos_, bytes);
     pos_ += bytes;
   }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <sstream>
+#include <utility>
 
 #include "common/test_util.h"
 #include "sims/core/error.h"
@@ -56,6 +58,19 @@ std::map<std::string, std::vector<int>> Series(const std::string& html) {
   return out;
 }
 
+// The (x, y) points of the first plot that draws series `name`, in drawing order.
+std::vector<std::pair<double, double>> Points(const std::string& html, const std::string& name) {
+  const std::regex re("<polyline class='series' data-series='" + name + "'[^>]*points='([^']*)'");
+  std::smatch m;
+  std::vector<std::pair<double, double>> out;
+  if (!std::regex_search(html, m, re)) return out;
+  std::istringstream in(m[1].str());
+  double x = 0, y = 0;
+  char comma = 0;
+  while (in >> x >> comma >> y) out.emplace_back(x, y);
+  return out;
+}
+
 TEST(TrainingReportTest, EveryCsvColumnIsAPlottedSeries) {
   const auto dir = sims::testing::TempDir("io_report");
   const int rows = 40;
@@ -102,6 +117,17 @@ TEST(TrainingReportTest, LongLogsAreReducedButKeepSpikes) {
   ASSERT_TRUE(series.count("reward"));
   EXPECT_LE(series.at("reward")[0], 700);
   EXPECT_NE(html.find(">100<"), std::string::npos) << "spike lost from the table / axis";
+  // The axis and table see every row, so only the drawn line shows whether the reduction kept
+  // the spike: exactly one drawn point stands above the flat 1.0 line, at iteration 12345.
+  const auto points = Points(html, "reward");
+  ASSERT_GE(points.size(), 3u);
+  double x_lo = points[0].first, x_hi = points[0].first, y_flat = points[0].second;
+  for (const auto& [x, y] : points) x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
+  std::vector<std::pair<double, double>> above;
+  for (const auto& p : points)
+    if (p.second < y_flat - 1.0) above.push_back(p);  // SVG y grows downwards
+  ASSERT_EQ(above.size(), 1u) << "the spike was dropped (or more than one point left the line)";
+  EXPECT_NEAR((above[0].first - x_lo) / (x_hi - x_lo), 12345.0 / 19999.0, 1e-3);
 }
 
 TEST(TrainingReportTest, BadCsvNamesLineAndColumn) {

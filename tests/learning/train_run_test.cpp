@@ -100,19 +100,34 @@ TEST(TrainRunTest, ResumeMigratesAnOlderLogAndRejectsBadRows) {
   EXPECT_TRUE(std::isnan(t.values[Column(t, "samples_per_s")][0]));
   EXPECT_GT(t.values[Column(t, "samples_per_s")][2], 0);
 
+  // A row whose iteration is not an integer: one project error naming the file, the line, the
+  // column and the expectation (std::stoll threw std::invalid_argument here, or read "2.5" and
+  // "1x" as 2 and 1), and the log is left as it was.
+  o.iterations = 4;
+  for (const std::string bad : {"not-a-number", "2.5", "1x", "", "-1", "99999999999999999999"}) {
+    SCOPED_TRACE(bad);
+    {
+      std::ofstream out(dir / "log.csv");
+      out << lines[0] << "\n" << lines[1] << "\n" << bad << ",1,2\n";
+    }
+    const std::string what = sims::testing::ErrorOf([&] { RunTraining(c, o); });
+    EXPECT_NE(what.find("log.csv"), std::string::npos) << what;
+    EXPECT_NE(what.find("line 3, column iteration"), std::string::npos) << what;
+    EXPECT_NE(what.find("expected a non-negative integer"), std::string::npos) << what;
+    EXPECT_NE(what.find("'" + bad + "'"), std::string::npos) << what;
+    EXPECT_EQ(ReadLines(dir / "log.csv").size(), 3u);
+  }
+
+  // A row cut off by a crash (no newline yet) is dropped, not read as iteration "1".
   {
     std::ofstream out(dir / "log.csv");
-    out << lines[0] << "\nnot-a-number,1,2\n";
+    for (const auto& l : migrated) out << l << "\n";
+    out << "1";
   }
-  o.iterations = 4;
-  try {
-    RunTraining(c, o);
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("log.csv"), std::string::npos) << what;
-    EXPECT_NE(what.find("iteration"), std::string::npos) << what;
-  }
+  EXPECT_EQ(RunTraining(c, o), 4);
+  const auto after_cut = ReadLines(dir / "log.csv");
+  ASSERT_EQ(after_cut.size(), 5u);
+  for (int r = 1; r <= 4; ++r) EXPECT_EQ(after_cut[r].substr(0, 2), std::to_string(r) + ",");
 }
 
 // bench_train's figure: real iterations through RunTraining, a time split that adds up, and

@@ -8,6 +8,7 @@
 #include "motion/motion_test_util.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
+#include "sims/motion/retarget.h"
 
 namespace sims::motion {
 namespace {
@@ -52,11 +53,30 @@ TEST(ImportTest, MalformedBvhFailsClearlyAndWritesNothing) {
     }
   }
   EXPECT_TRUE(fs::is_empty(dir));
+
+  // A readable clip (not the optional assimp-testmodels one, whose absence would throw "file
+  // not found" first) with a bad label: the label is the error, and nothing is written.
+  const auto src = testing::TempDir("import_bad_src");
+  WriteHumanoidBvh(testing_util::WigglyClip(20, 1, 0.1, true), src / "clip.bvh");
+  RetargetConfig map = HumanoidBvhRetargetConfig();
+  map.target_fps = 30;
+  map.ground = "clip_min";
+  SaveConfig(src / "map.json", map);
+  o.map = src / "map.json";
   o.emotion = "gleeful";
-  EXPECT_THROW(ImportBvhFile(kCmu, dir, o), Error);
+  std::string e = testing::ErrorOf([&] { ImportBvhFile(src / "clip.bvh", dir, o); });
+  EXPECT_NE(e.find("clip.bvh"), std::string::npos) << e;
+  EXPECT_NE(e.find("emotion"), std::string::npos) << e;
+  EXPECT_NE(e.find("neutral"), std::string::npos) << e;  // lists the labels
+  EXPECT_TRUE(fs::is_empty(dir));
   o.emotion = "neutral";
-  o.map = testing::TestData("motion/no_map.json");
-  EXPECT_THROW(ImportBvhFile(kCmu, dir, o), Error);
+  o.map = src / "no_map.json";
+  e = testing::ErrorOf([&] { ImportBvhFile(src / "clip.bvh", dir, o); });
+  EXPECT_NE(e.find("no_map.json"), std::string::npos) << e;
+  EXPECT_TRUE(fs::is_empty(dir));
+  // The same clip with good labels imports: the errors above came from the labels and the map.
+  o.map = src / "map.json";
+  EXPECT_EQ(ImportBvhFile(src / "clip.bvh", dir, o).frames, 20);
 }
 
 TEST(ImportTest, DatasetRulesLabelFiles) {

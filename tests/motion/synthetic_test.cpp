@@ -12,13 +12,11 @@
 namespace sims::motion {
 namespace {
 
-// The whole catalogue, generated once (about a second).
+// The whole catalogue with the default options, generated once: exactly the clips
+// make_synthetic_motions writes to data/motions/synthetic (two variants per recipe), so the
+// quality checks below cover the jittered variants training sees, not only the base recipes.
 const std::vector<MotionClip>& Catalogue() {
-  static const std::vector<MotionClip> clips = [] {
-    SyntheticOptions o;
-    o.variants = 1;
-    return GenerateSyntheticClips(o);
-  }();
+  static const std::vector<MotionClip> clips = GenerateSyntheticClips(SyntheticOptions{});
   return clips;
 }
 
@@ -58,6 +56,15 @@ TEST(SyntheticTest, CatalogueCoversSkillsWithLabels) {
   }
   for (const char* s : {"walk", "idle", "sit", "lie", "reach", "getup"})
     EXPECT_GE(skills[s], 2) << s;
+  // Every recipe comes as its base clip and one "_v1" variant (SyntheticOptions::variants).
+  EXPECT_EQ(SyntheticOptions{}.variants, 2);
+  int base = 0, v1 = 0;
+  for (const MotionClip& c : Catalogue()) {
+    const std::string& n = c.meta().name;
+    const bool variant = n.size() > 3 && n.compare(n.size() - 3, 3, "_v1") == 0;
+    (variant ? v1 : base) += 1;
+  }
+  EXPECT_EQ(v1, base);
   EXPECT_GE(skills["walk"], 20);
   for (const char* e :
        {"neutral", "sad", "tired", "drunk", "hurried", "angry", "happy", "relaxed", "stressed"})

@@ -10,6 +10,7 @@
 
 #include "common/test_util.h"
 #include "planner/fake_llm_server.h"
+#include "sims/core/environment.h"
 #include "sims/planner/llm_client.h"
 #include "sims/planner/planner.h"
 
@@ -147,6 +148,33 @@ TEST_F(LlmTest, NoEndpointOrUnreachableServerFallsBack) {
   ScriptResult https =
       Planner("https://api.example.com/v1").ScriptForTheme(kTheme, Difficulty::kMid, 1);
   EXPECT_THAT(https.note, HasSubstr("https is not supported"));
+}
+
+// Tests (and the library) never read $SIMS_LLM_ENDPOINT: only an explicit Environment fills an
+// empty endpoint. With an endpoint installed process-wide (as the test main does from a user's
+// shell), the "no LLM" planners here must still not contact it; the last request, which passes
+// the environment on as plan_story does, shows the server would have answered.
+TEST_F(LlmTest, InstalledEnvironmentIsNeverConsultedImplicitly) {
+  struct Restore {
+    Environment saved = InstalledEnvironment();
+    ~Restore() { InstallEnvironment(saved); }
+  } restore;
+  FakeServer server({{Recorded("valid_reply.json")}});
+  Environment with_llm = restore.saved;
+  with_llm.llm_endpoint = server.url();
+  with_llm.llm_model = "env-model";
+  InstallEnvironment(with_llm);
+  ScriptResult none = Planner("").ScriptForTheme(kTheme, Difficulty::kMid, 1);
+  EXPECT_EQ(none.planner, "embedded");
+  EXPECT_THAT(none.note, HasSubstr("no LLM endpoint configured"));
+  PlanRequest req;
+  req.theme = kTheme;
+  EXPECT_EQ(PlanStory(req).planner, "embedded");
+  EXPECT_TRUE(server.requests().empty());
+  req.environment = InstalledEnvironment();
+  const Plan used = PlanStory(req);
+  EXPECT_EQ(used.planner, "llm:env-model");
+  EXPECT_EQ(server.requests().size(), 1u);
 }
 
 TEST(HttpClientTest, DecodesChunkedRepliesAndParsesUrls) {

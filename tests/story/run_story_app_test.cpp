@@ -38,12 +38,25 @@ TEST(RunStoryAppTest, BundledPoliciesWriteEveryOutputWithValidContent) {
   EXPECT_TRUE(std::filesystem::equivalent(result["policies"].get<std::string>(),
                                           AssetPath("policies/policies.json")));
   const double duration = result["duration_s"].get<double>();
-  EXPECT_GT(duration, 0.5) << "the bundled walk policy really walked";
+  EXPECT_GT(duration, 0.5);
+  // The bundled walk policy really walked there: a character that stood still, fell or
+  // wandered off would fail the success test (pelvis within 0.5 m of the chair's approach
+  // point) and would not have covered the metre and a half from the start.
+  const auto& kf = result["keyframes"][0];
+  EXPECT_TRUE(kf["success"].get<bool>()) << kf.dump();
+  EXPECT_LT(kf["contact_error"].get<double>(), 0.5) << kf.dump();
+  EXPECT_EQ(kf["falls"], 0);
+  EXPECT_EQ(result["success_rate"], 1.0);
 
   const auto motion = io::LoadMotionRecord(out / "motion.json");  // validates frames/keyframes
   EXPECT_DOUBLE_EQ(motion.fps, 30.0);
   EXPECT_NEAR(motion.duration(), duration, 1.0 / 30.0 + 1e-9);
   ASSERT_EQ(motion.keyframes.size(), 1u);
+  EXPECT_TRUE(motion.keyframes[0].success);
+  ASSERT_GE(motion.num_frames(), 2);
+  const double walked =
+      (motion.frames.back().root_pos - motion.frames.front().root_pos).head<2>().norm();
+  EXPECT_GT(walked, 1.0) << "pelvis moved " << walked << " m";
   const auto bvh = motion::ReadBvh(out / "motion.bvh");
   EXPECT_EQ(bvh.num_frames, motion.num_frames());
   EXPECT_EQ(ReadText(out / "scene.glb").substr(0, 4), "glTF");
