@@ -97,7 +97,7 @@ TEST(PolicyEvalTest, WalkSmokeAndDeterminism) {
 // distance. Episodes of 10 steps (1/3 s) end before an untrained humanoid can fall or move far.
 TEST(PolicyEvalTest, SuccessesAreCountedAndTimed) {
   task::SkillConfig sc = WalkConfig();
-  sc.walk_success_radius = 6.0;
+  sc.walk.success_radius = 6.0;
   const fs::path policy = TinyPolicy(sc, 10, "eval_success");
   PolicyEvalOptions o = TwoEnvOptions(policy, 6);
   o.seed = 2;
@@ -119,7 +119,7 @@ TEST(PolicyEvalTest, SuccessesAreCountedAndTimed) {
   // 4 m succeed at once, the others never do; the aggregates count only the successes.
   learning::TrainConfig tc;
   tc.skill = sc;
-  tc.skill.walk_success_radius = 4.0;
+  tc.skill.walk.success_radius = 4.0;
   tc.env = learning::ReadPolicyConfigs(learning::Policy(policy), policy.string()).env.value();
   const fs::path cfg = sims::testing::TempDir("eval_success_cfg") / "walk.json";
   SaveConfig(cfg, tc);
