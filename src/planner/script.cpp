@@ -324,6 +324,9 @@ ShortScript ParseShortScriptText(const std::string& text, const std::string& sou
     std::string what = e.what();
     auto pos = what.find("parse error");
     ThrowInputError(source, "", "valid JSON", pos == std::string::npos ? what : what.substr(pos));
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double (found by the script fuzzer: "3e40000000000000").
+    ThrowInputError(source, "", "valid JSON with numbers a double can hold", e.what());
   }
   return ParseShortScript(j, source, mode, vocab);
 }

@@ -91,6 +91,15 @@ TEST(ScriptTest, SingleQuotesAreRejectedWithAFix) {
   EXPECT_THAT(e, HasSubstr("replace '"));
 }
 
+// Regression input of the script fuzzer: a number beyond double range made nlohmann throw
+// out_of_range, which escaped as a non-project exception.
+TEST(ScriptTest, NumberOverflowIsAProjectError) {
+  std::string e = ErrorOf("3e40000000000000desk.\",\n  \"em");
+  EXPECT_THAT(e, HasSubstr("story.json"));
+  EXPECT_THAT(e, HasSubstr("numbers a double can hold"));
+  EXPECT_THROW(ParseShortScriptText("{\"summary\": 1e999999}", "s.json"), Error);
+}
+
 TEST(ScriptTest, ParseErrorsNameTheLine) {
   std::string e = ErrorOf("{\"summary\": \"x\",\n \"keyframes\": [,]}");
   EXPECT_THAT(e, HasSubstr("story.json"));
