@@ -71,6 +71,9 @@ nlohmann::json ReadJsonFile(const std::filesystem::path& path) {
     throw Error(path.string() + ":" + std::to_string(line) + ":" + std::to_string(col) +
                 ": expected valid JSON (" + (pos == std::string::npos ? what : what.substr(pos)) +
                 ")");
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond double range ("3e40000000000000") is not a parse_error in nlohmann.
+    ThrowInputError(path.string(), "", "valid JSON with numbers a double can hold", e.what());
   }
 }
 

@@ -112,6 +112,9 @@ TEST(ConfigTest, ParseErrorNamesLineAndColumn) {
     EXPECT_NE(std::string(e.what()).find("bad.json:3:"), std::string::npos) << e.what();
   }
   EXPECT_THROW(ReadJsonFile(dir / "missing.json"), Error);
+  // A number beyond double range is nlohmann's out_of_range, not a parse error.
+  std::ofstream(dir / "huge.json") << "{\"a\": 3e40000000000000}";
+  EXPECT_THROW(ReadJsonFile(dir / "huge.json"), Error);
 }
 
 TEST(ConfigTest, AtomicWriteLeavesNoTempFiles) {
