@@ -68,8 +68,12 @@ RunningMeanStdImpl::RunningMeanStdImpl(int64_t size, double clip) : clip_(clip) 
 
 void RunningMeanStdImpl::Update(const torch::Tensor& x) {
   torch::NoGradGuard guard;
-  const auto m = ColumnMoments(x.reshape({-1, mean_.size(0)}));
-  if (m.count == 0) return;
+  MergeMoments(ColumnMoments(x.reshape({-1, mean_.size(0)})));
+}
+
+void RunningMeanStdImpl::MergeMoments(const FixedOrderMoments& m) {
+  torch::NoGradGuard guard;
+  if (m.count <= 0) return;
   const auto mean = m.sum / m.count;
   Merge(m.count, mean, torch::clamp_min(m.sum_sq / m.count - mean.pow(2), 0.0));
 }

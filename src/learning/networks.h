@@ -14,6 +14,16 @@
 
 namespace sims::learning {
 
+/// Per-column count, sum and sum of squares in float64.
+struct FixedOrderMoments {
+  double count = 0;      ///< Rows.
+  torch::Tensor sum;     ///< [d] column sums.
+  torch::Tensor sum_sq;  ///< [d] column sums of squares.
+};
+/// Moments of x viewed as [rows, last dim] (a 1-d x is one column), summed row by row in a
+/// fixed order so the result is the same at any thread count.
+FixedOrderMoments ColumnMoments(const torch::Tensor& x);
+
 /// rl_games RunningMeanStd: per-feature mean/variance with eps 1e-5, output clamped.
 class RunningMeanStdImpl : public torch::nn::Module {
  public:
@@ -24,6 +34,8 @@ class RunningMeanStdImpl : public torch::nn::Module {
   /// Folds a batch given by its size, mean and population variance (float64 [size]); what
   /// Update() does after computing them, and what ranks do with all-reduced moments.
   void Merge(double n, const torch::Tensor& batch_mean, const torch::Tensor& batch_var);
+  /// Merges a batch given by its column moments (what Update() and all-reduced ranks have).
+  void MergeMoments(const FixedOrderMoments& m);
   /// Caps the sample count at `count` (later batches then weigh in at once) and restarts the
   /// inputs whose variance is below `constant_var` at mean 0, variance 1 (a warm start from
   /// another task, where those inputs never varied). Returns how many inputs restarted.
@@ -42,16 +54,6 @@ class RunningMeanStdImpl : public torch::nn::Module {
   double clip_;
 };
 TORCH_MODULE(RunningMeanStd);
-
-/// Per-column count, sum and sum of squares in float64.
-struct FixedOrderMoments {
-  double count = 0;      ///< Rows.
-  torch::Tensor sum;     ///< [d] column sums.
-  torch::Tensor sum_sq;  ///< [d] column sums of squares.
-};
-/// Moments of x viewed as [rows, last dim] (a 1-d x is one column), summed row by row in a
-/// fixed order so the result is the same at any thread count.
-FixedOrderMoments ColumnMoments(const torch::Tensor& x);
 
 /// A plain MLP with a configurable activation; the last layer is linear.
 class MlpImpl : public torch::nn::Module {

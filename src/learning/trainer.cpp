@@ -185,12 +185,8 @@ struct Trainer::Impl {
         torch::cat({torch::full({1}, local.count, torch::kFloat64), local.sum, local.sum_sq})
             .contiguous();
     AllReduce(moments);
-    const double count = moments[0].item<double>();
-    if (count <= 0) return;
-    const auto mean = moments.slice(0, 1, 1 + d) / count;
-    const auto var =
-        torch::clamp_min(moments.slice(0, 1 + d, 1 + 2 * d) / count - mean.pow(2), 0.0);
-    norm->Merge(count, mean, var);
+    norm->MergeMoments({moments[0].item<double>(), moments.slice(0, 1, 1 + d),
+                        moments.slice(0, 1 + d, 1 + 2 * d)});
   }
 
   // Gradients are all-reduced as two flat buckets per minibatch: the actor-critic's starts as
