@@ -120,7 +120,7 @@ LongScript LoadLongScript(const std::filesystem::path& path, const Vocabulary& v
   json j;
   try {
     j = json::parse(ss.str());
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {  // parse_error, or out_of_range for a huge number
     (void)ParseShortScriptText(ss.str(), path.string(), GrammarMode::kLenient, vocab);
     throw;  // not reached: the parser above throws a clearer sims::Error
   }

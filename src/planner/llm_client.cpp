@@ -309,7 +309,7 @@ std::string PostChatRequest(const std::string& endpoint, const std::string& api_
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(r.body);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for a huge number
     throw LlmError(LlmError::Kind::kProtocol, std::string("LLM reply is not JSON: ") + e.what());
   }
   const nlohmann::json* content = nullptr;

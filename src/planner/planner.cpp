@@ -90,7 +90,7 @@ LongScript StoryPlanner::ParseLlmReply(const std::string& content, Difficulty di
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {  // parse_error, or out_of_range for a huge number
     (void)ParseShortScriptText(text, source, GrammarMode::kLenient, *vocab_);  // clear message
     throw;
   }

@@ -165,7 +165,7 @@ ShortScript ParseScriptAnswer(const std::string& text, const std::string& source
   json j;
   try {
     j = json::parse(stripped);
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {  // parse_error, or out_of_range for a huge number
     // The loader's message explains single quotes and other common defects.
     (void)ParseShortScriptText(stripped, source, GrammarMode::kLenient, vocab);
     ThrowInputError(source, "", "a JSON object", "unparsable text");
