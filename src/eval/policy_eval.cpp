@@ -93,6 +93,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
   for (const auto& t : results)
     per.push_back({{"success", t.success},
                    {"fell", t.fell},
+                   {"force_end", t.force_end},
                    {"success_step", t.success_step},
                    {"contact_error", t.contact_error},
                    {"steps_completed", t.steps_completed},
@@ -105,6 +106,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
           {"seed", seed},
           {"success_rate", success_rate},
           {"fall_rate", fall_rate},
+          {"force_end_rate", force_end_rate},
           {"contact_error", contact_error},
           {"success_steps", success_steps},
           {"mean_num_steps", mean_num_steps},
@@ -126,6 +128,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   // targets 3–5 m away).
   const task::SkillInfo& info = task::FindSkill(sc.skill);
   sc.object.held_out_objects = o.held_out;
+  sc.object.spawn_curriculum = false;  // the full spawn-distance range
   sc.reference_init_prob = 0;
   if (!sc.style_conditioned) sc.motion.manifest.clear();
   if (info.configure_eval) info.configure_eval(&sc);
@@ -189,16 +192,19 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       if (trial[i] < 0) continue;
       TrialResult& t = rep.results[trial[i]];
       ++t.length;
-      if (env.successes()[i] && t.success_step < 0) t.success_step = t.length;
+      // Success counts once the task reports itself accomplished (held as long as required).
+      if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
       if (!env.dones()[i]) continue;
-      t.fell = env.terminated()[i] != 0;
+      t.fell = env.end_reasons()[i] == sim::EndReason::kFall ||
+               env.end_reasons()[i] == sim::EndReason::kUnstable;
+      t.force_end = env.end_reasons()[i] == sim::EndReason::kTaskTerminate;
       t.contact_error = hook->error(i);
       if (hook->multi_step()) {
         t.steps_completed = hook->completed(i);
         t.num_steps = hook->num_steps(i);
-        t.success = !t.fell && t.steps_completed == t.num_steps;
+        t.success = !t.fell && !t.force_end && t.steps_completed == t.num_steps;
       } else {
-        t.success = !t.fell && t.success_step >= 0;
+        t.success = !t.fell && !t.force_end && t.success_step >= 0;
         t.steps_completed = t.success ? 1 : 0;
       }
       ++finished;
@@ -211,6 +217,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   for (const auto& t : rep.results) {
     successes += t.success;
     rep.fall_rate += t.fell;
+    rep.force_end_rate += t.force_end;
     rep.contact_error += t.contact_error;
     rep.success_steps += t.steps_completed;
     rep.mean_num_steps += t.num_steps;
@@ -220,6 +227,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   const double n = o.trials;
   rep.success_rate = successes / n;
   rep.fall_rate /= n;
+  rep.force_end_rate /= n;
   rep.contact_error /= n;
   rep.success_steps /= n;
   rep.mean_num_steps /= n;

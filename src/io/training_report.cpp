@@ -240,7 +240,9 @@ std::vector<ReportPlot> DefaultTrainingPlots() {
   return {
       {"Reward per step", {"total_reward", "task_reward", "style_reward"}},
       {"Episode return", {"episode_return"}},
-      {"Success and falls (fraction of episodes)", {"success_rate", "fall_rate"}},
+      {"Success and falls (fraction of episodes)", {"success_rate", "fall_rate", "force_end_rate"}},
+      {"Success by start (reference vs default)",
+       {"success_rate_reference", "success_rate_default"}},
       {"Discriminator accuracy", {"disc_acc_demo", "disc_acc_agent"}},
       {"Throughput (samples/s)", {"env_samples_per_s", "train_samples_per_s"}},
       {"Episode length (steps)", {"episode_length"}},

@@ -60,6 +60,81 @@ int64_t ObsWidth(const std::vector<sim::ObsSegment>& segments) {
   return end;
 }
 
+std::vector<std::pair<int64_t, int64_t>> EncoderColumns(
+    const std::vector<sim::ObsSegment>& segments, const NetworkConfig& config) {
+  std::vector<std::pair<int64_t, int64_t>> out;
+  int64_t at = 0;
+  for (const auto& s : segments) {
+    const int64_t w = s.kind == sim::ObsSegment::Kind::kHeightmap
+                          ? (config.heightmap_hidden.empty() ? s.size : config.heightmap_hidden.back())
+                          : s.size;
+    out.emplace_back(at, w);
+    at += w;
+  }
+  return out;
+}
+
+namespace {
+// The segment of `list` with the same name, kind and size as `s` (−1: none).
+int Matching(const std::vector<sim::ObsSegment>& list, const sim::ObsSegment& s) {
+  for (size_t k = 0; k < list.size(); ++k)
+    if (list[k].name == s.name && list[k].kind == s.kind && list[k].size == s.size)
+      return static_cast<int>(k);
+  return -1;
+}
+}  // namespace
+
+std::vector<std::string> ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
+                                             const std::vector<sim::ObsSegment>& src_segments,
+                                             ActorCritic& dst, RunningMeanStd& dst_norm,
+                                             const std::vector<sim::ObsSegment>& dst_segments,
+                                             const NetworkConfig& config) {
+  torch::NoGradGuard guard;
+  const auto src_cols = EncoderColumns(src_segments, config);
+  const auto dst_cols = EncoderColumns(dst_segments, config);
+  std::vector<std::string> fresh;
+  for (size_t k = 0; k < dst_segments.size(); ++k) {
+    const int j = Matching(src_segments, dst_segments[k]);
+    if (j < 0) fresh.push_back(dst_segments[k].name);
+    if (j >= 0 && dst_segments[k].kind != sim::ObsSegment::Kind::kStyle)
+      dst_norm->ImportColumns(*src_norm, src_segments[j].offset, dst_segments[k].offset,
+                              dst_segments[k].size);
+  }
+  const auto src_params = src->named_parameters();
+  for (auto& item : dst->named_parameters()) {
+    const std::string& name = item.key();
+    torch::Tensor& to = item.value();
+    const torch::Tensor* from = src_params.find(name);
+    if (from && from->sizes() == to.sizes()) {
+      to.copy_(*from);
+      continue;
+    }
+    // The first layer after an encoder: columns follow the segments.
+    if (from && (name == "actor.fc0.weight" || name == "critic.fc0.weight") && to.dim() == 2 &&
+        from->dim() == 2 && from->size(0) == to.size(0)) {
+      to.zero_();
+      for (size_t k = 0; k < dst_segments.size(); ++k) {
+        const int j = Matching(src_segments, dst_segments[k]);
+        if (j < 0) continue;
+        to.narrow(1, dst_cols[k].first, dst_cols[k].second)
+            .copy_(from->narrow(1, src_cols[j].first, src_cols[j].second));
+      }
+      continue;
+    }
+    ThrowInputError("warm-start policy", name, "a parameter of the same shape (same network)",
+                    from ? "another shape" : "missing");
+  }
+  return fresh;
+}
+
+void RunningMeanStdImpl::ImportColumns(const RunningMeanStdImpl& src, int64_t src_offset,
+                                       int64_t dst_offset, int64_t size) {
+  torch::NoGradGuard guard;
+  mean_.narrow(0, dst_offset, size).copy_(src.mean_.narrow(0, src_offset, size));
+  var_.narrow(0, dst_offset, size).copy_(src.var_.narrow(0, src_offset, size));
+  count_.copy_(src.count_);
+}
+
 RunningMeanStdImpl::RunningMeanStdImpl(int64_t size, double clip) : clip_(clip) {
   mean_ = register_buffer("mean", torch::zeros({size}, torch::kFloat64));
   var_ = register_buffer("var", torch::ones({size}, torch::kFloat64));

@@ -40,6 +40,10 @@ class RunningMeanStdImpl : public torch::nn::Module {
   /// inputs whose variance is below `constant_var` at mean 0, variance 1 (a warm start from
   /// another task, where those inputs never varied). Returns how many inputs restarted.
   int64_t Soften(double count, double constant_var);
+  /// Copies `size` features' statistics from `src` (at src_offset) to this one (at
+  /// dst_offset), and takes src's sample count: a warm start from another observation layout.
+  void ImportColumns(const RunningMeanStdImpl& src, int64_t src_offset, int64_t dst_offset,
+                     int64_t size);
   /// Feature count.
   int64_t size() const { return mean_.size(0); }
   /// (x − mean) / sqrt(var + eps), clamped.
@@ -138,5 +142,23 @@ TORCH_MODULE(Discriminator);
 
 /// Total width of a segment list.
 int64_t ObsWidth(const std::vector<sim::ObsSegment>& segments);
+
+/// Where each segment's features land in an ObsEncoder's output: {first column, width} per
+/// segment (heightmaps: their encoder's output width).
+std::vector<std::pair<int64_t, int64_t>> EncoderColumns(
+    const std::vector<sim::ObsSegment>& segments, const NetworkConfig& config);
+
+/// Initialises `dst` (with normaliser dst_norm, layout dst_segments) from a policy trained on
+/// another layout (`src`, src_norm, src_segments) with the same network config: parameters of
+/// equal name and shape are copied; the first layer of the actor and critic MLPs takes the
+/// input columns of segments present in both (same name, kind and size) and zero weights for
+/// the new ones, so the warm-started policy acts as the source did; the normaliser takes the
+/// shared segments' statistics, the new ones start at mean 0, variance 1. Returns the names of
+/// the new segments. Throws sims::Error when a parameter cannot be matched.
+std::vector<std::string> ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
+                                             const std::vector<sim::ObsSegment>& src_segments,
+                                             ActorCritic& dst, RunningMeanStd& dst_norm,
+                                             const std::vector<sim::ObsSegment>& dst_segments,
+                                             const NetworkConfig& config);
 
 }  // namespace sims::learning

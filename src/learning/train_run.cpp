@@ -34,7 +34,9 @@ const std::vector<std::string>& CsvColumns() {
       "bounds_loss",       "disc_loss",         "grad_penalty",      "disc_acc_demo",
       "disc_acc_agent",    "clip_fraction",     "env_samples_per_s", "train_samples_per_s",
       "update_gflops",     "iteration_seconds", "samples_per_s",     "env_seconds",
-      "inference_seconds", "disc_seconds",      "ppo_seconds",       "logging_seconds"};
+      "inference_seconds", "disc_seconds",      "ppo_seconds",       "logging_seconds",
+      "force_end_rate",    "reference_start_share", "success_rate_reference",
+      "success_rate_default"};
   return cols;
 }
 
@@ -66,7 +68,11 @@ std::string CsvRow(const IterationStats& s, const IterationTiming& timing) {
                       s.inference_seconds,
                       s.disc_seconds,
                       s.ppo_seconds,
-                      timing.logging_seconds};
+                      timing.logging_seconds,
+                      s.force_end_rate,
+                      s.reference_start_share,
+                      s.success_rate_reference,
+                      s.success_rate_default};
   std::ostringstream out;
   out.precision(7);
   for (size_t i = 0; i < std::size(v); ++i) out << (i ? "," : "") << v[i];

@@ -103,7 +103,9 @@ struct Trainer::Impl {
 
   /// What a rollout gathered besides the buffers.
   struct Rollout {
-    double return_sum = 0, length_sum = 0, success_sum = 0, fall_sum = 0;
+    double return_sum = 0, length_sum = 0, success_sum = 0, fall_sum = 0, force_sum = 0;
+    // Episodes and successes by start kind (reference-state vs default starts).
+    double reference_episodes = 0, reference_success = 0, default_success = 0;
     int64_t episodes = 0;
     double seconds = 0, env_seconds = 0;
   };
@@ -447,7 +449,9 @@ Trainer::Impl::Rollout Trainer::Impl::CollectRollout() {
     const float* r = env->rewards();
     const uint8_t* done = env->dones();
     const uint8_t* term = env->terminated();
-    const uint8_t* succ = env->successes();
+    const uint8_t* succ = env->completions();
+    const sim::EndReason* why = env->end_reasons();
+    const uint8_t* reference = env->reference_starts();
     std::memcpy(rew_p + t * N, r, sizeof(float) * N);
     std::vector<int64_t> timeouts;
     for (int64_t i = 0; i < N; ++i) {
@@ -475,7 +479,18 @@ Trainer::Impl::Rollout Trainer::Impl::CollectRollout() {
         out.return_sum += ep_return[i];
         out.length_sum += ep_len[i];
         out.success_sum += ep_success[i];
-        out.fall_sum += term[i];
+        if (why) {
+          out.fall_sum += why[i] == sim::EndReason::kFall || why[i] == sim::EndReason::kUnstable;
+          out.force_sum += why[i] == sim::EndReason::kTaskTerminate;
+        } else {
+          out.fall_sum += term[i];
+        }
+        if (reference && reference[i]) {
+          out.reference_episodes += 1;
+          out.reference_success += ep_success[i];
+        } else {
+          out.default_success += ep_success[i];
+        }
         ++out.episodes;
         ep_return[i] = ep_len[i] = 0;
         ep_success[i] = 0;
@@ -692,7 +707,11 @@ IterationStats Trainer::RunIteration() {
                    u.grad_penalty,
                    u.demo_accuracy,
                    u.agent_accuracy,
-                   u.clip_fraction};
+                   u.clip_fraction,
+                   roll.force_sum,
+                   roll.reference_episodes,
+                   roll.reference_success,
+                   roll.default_success};
   if (m.comm) m.comm->AllReduceSum(sums, static_cast<int64_t>(std::size(sums)));
   const double episodes = sums[4];
   const double batch_size = static_cast<double>(T * N * m.world);
@@ -716,6 +735,10 @@ IterationStats Trainer::RunIteration() {
   st.disc_acc_demo = sums[13] / s;
   st.disc_acc_agent = sums[14] / s;
   st.clip_fraction = sums[15] / s;
+  st.force_end_rate = episodes > 0 ? sums[16] / episodes : std::nan("");
+  st.reference_start_share = episodes > 0 ? sums[17] / episodes : std::nan("");
+  st.success_rate_reference = sums[17] > 0 ? sums[18] / sums[17] : std::nan("");
+  st.success_rate_default = episodes > sums[17] ? sums[19] / (episodes - sums[17]) : std::nan("");
   st.env_samples_per_s = static_cast<double>(T * N) / roll.seconds;
   const int64_t mb_rank = u.minibatch / m.world;  // this rank's FLOPs and samples
   st.train_samples_per_s =
@@ -945,12 +968,43 @@ void Trainer::InitFromPolicy(const std::filesystem::path& path) {
   auto& m = *impl_;
   ReadPolicyFile(path, [&](torch::serialize::InputArchive& archive, const std::string& metadata) {
     const auto meta = nlohmann::json::parse(metadata);
-    if (meta.at("obs_dim").get<int64_t>() != m.obs_dim ||
-        meta.at("network") != ConfigToJson(m.cfg.network))
-      ThrowInputError(path.string(), "obs_dim/network",
-                      "the same observation width and network sizes",
-                      meta.at("obs_dim").dump() + " / " + meta.at("network").dump());
-    LoadPolicyWeights(archive, m.ac, m.obs_norm);
+    if (meta.at("network") != ConfigToJson(m.cfg.network))
+      ThrowInputError(path.string(), "network", "the same network sizes as this run",
+                      meta.at("network").dump());
+    std::vector<sim::ObsSegment> segs;
+    int64_t offset = 0;
+    for (const auto& j : meta.at("segments")) {
+      sim::ObsSegment seg;
+      seg.name = j.at("name").get<std::string>();
+      seg.kind = static_cast<sim::ObsSegment::Kind>(j.at("kind").get<int>());
+      seg.offset = j.at("offset").get<int>();
+      seg.size = j.at("size").get<int>();
+      seg.rows = j.at("rows").get<int>();
+      seg.cols = j.at("cols").get<int>();
+      offset = std::max<int64_t>(offset, seg.offset + seg.size);
+      segs.push_back(seg);
+    }
+    if (offset != meta.at("obs_dim").get<int64_t>())
+      ThrowInputError(path.string(), "segments", "segments covering obs_dim", std::to_string(offset));
+    auto same = [](const sim::ObsSegment& a, const sim::ObsSegment& b) {
+      return a.name == b.name && a.kind == b.kind && a.offset == b.offset && a.size == b.size;
+    };
+    if (segs.size() == m.segments.size() &&
+        std::equal(segs.begin(), segs.end(), m.segments.begin(), same)) {
+      LoadPolicyWeights(archive, m.ac, m.obs_norm);
+      return;
+    }
+    // Another task's layout (walk → an object skill): shared inputs keep their weights and
+    // statistics, new ones start silent.
+    ActorCritic src(segs, m.act_dim, m.cfg.network);
+    RunningMeanStd src_norm(offset, m.cfg.ppo.obs_clip);
+    LoadPolicyWeights(archive, src, src_norm);
+    const auto fresh =
+        ImportAcrossLayouts(src, src_norm, segs, m.ac, m.obs_norm, m.segments, m.cfg.network);
+    std::string names;
+    for (const auto& n : fresh) names += (names.empty() ? "" : ", ") + n;
+    spdlog::info("{}: warm start across layouts; new inputs start silent: {}", path.string(),
+                 names.empty() ? "none" : names);
   });
   const int64_t restarted = m.obs_norm->Soften(m.cfg.ppo.warm_start_obs_count, 1e-6);
   spdlog::info("{}: observation normaliser counts as {} samples; {} inputs constant there restart",

@@ -54,6 +54,37 @@ MotionClip Build(const std::vector<BodyKey>& keys, const IdleNoise& noise, Motio
   return MotionClip(fps, std::move(frames), std::move(meta));
 }
 
+// The approach composites: walk up to the seat, stop, turn round in place, then the sit-down
+// clip unchanged (so its furniture parameters still hold). Appended after the catalogue and
+// drawing nothing from its random stream, so every other clip stays as it was.
+constexpr double kApproachSpeed = 1.0;      // m/s
+constexpr double kApproachWalkTime = 1.6;   // s at full speed before slowing
+constexpr double kApproachStopTime = 0.8;   // s to slow to a stand
+constexpr double kApproachTurnTime = 2.8;   // s for the 180° turn (as walk_turn_in_place_180)
+constexpr double kApproachBlendTime = 0.3;  // s of crossfade into the sit-down clip
+
+double Heading(const Eigen::Quaterniond& q) {
+  const Eigen::Vector3d x = q * Eigen::Vector3d::UnitX();
+  return std::atan2(x.y(), x.x());
+}
+
+// Walk up and stop, then (turn_round) a 180° turn in place.
+WalkSpec ApproachSpec(const WalkStyle& gait, bool turn_round) {
+  const double t0 = kApproachWalkTime, t1 = t0 + kApproachStopTime, T = kApproachTurnTime;
+  const double peak = M_PI / (0.5 * T + 0.25 * T);  // bump area ≈ 0.75·peak·T = π
+  WalkSpec s;
+  s.style = gait;
+  s.keys = {{0.0, kApproachSpeed, 0}, {t0, kApproachSpeed, 0}, {t1, 0, 0}, {t1 + 0.2, 0, 0}};
+  s.duration = t1 + 0.6;
+  if (turn_round) {
+    s.keys.push_back({t1 + 0.2 + 0.25 * T, 0, peak});
+    s.keys.push_back({t1 + 0.2 + 0.75 * T, 0, peak});
+    s.keys.push_back({t1 + 0.2 + T, 0, 0});
+    s.duration = t1 + 0.2 + T + 0.4;
+  }
+  return s;
+}
+
 MotionClip Reversed(const MotionClip& c, MotionMeta meta) {
   std::vector<MotionFrame> f = c.frames();
   std::reverse(f.begin(), f.end());
@@ -515,6 +546,40 @@ SyntheticCatalog LoadSyntheticCatalog(const std::filesystem::path& path) {
   return LoadConfig<SyntheticCatalog>(path);
 }
 
+MotionClip ComposeAfter(const MotionClip& lead, const MotionClip& clip, double blend_seconds) {
+  SIMS_CHECK(lead.num_frames() > 0 && clip.num_frames() > 0 && lead.fps() == clip.fps());
+  const MotionFrame& last = lead.frame(lead.num_frames() - 1);
+  const MotionFrame& first = clip.frame(0);
+  const double yaw = Heading(first.root_rot) - Heading(last.root_rot);
+  const Eigen::Quaterniond dq(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  auto place = [&](MotionFrame f) {
+    const Eigen::Vector3d d(f.root_pos.x() - last.root_pos.x(), f.root_pos.y() - last.root_pos.y(),
+                            0);
+    const Eigen::Vector3d p = dq * d;
+    f.root_pos = Eigen::Vector3d(first.root_pos.x() + p.x(), first.root_pos.y() + p.y(),
+                                 f.root_pos.z());
+    f.root_rot = (dq * f.root_rot).normalized();
+    return f;
+  };
+  std::vector<MotionFrame> frames;
+  for (int i = 0; i + 1 < lead.num_frames(); ++i) frames.push_back(place(lead.frame(i)));
+  const MotionFrame from = place(last);
+  const int blend = std::min(clip.num_frames(), static_cast<int>(std::lround(blend_seconds *
+                                                                            clip.fps())));
+  for (int k = 0; k < clip.num_frames(); ++k) {
+    MotionFrame f = clip.frame(k);
+    if (k < blend) {
+      const double u = (k + 1.0) / (blend + 1.0);
+      const double a = u * u * (3 - 2 * u);  // smoothstep
+      f.root_pos = (1 - a) * from.root_pos + a * f.root_pos;
+      f.root_rot = from.root_rot.slerp(a, f.root_rot).normalized();
+      f.dof_pos = (1 - a) * from.dof_pos + a * f.dof_pos;
+    }
+    frames.push_back(f);
+  }
+  return MotionClip(clip.fps(), std::move(frames), clip.meta());
+}
+
 std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options) {
   return GenerateSyntheticClips(LoadSyntheticCatalog(DefaultSyntheticCatalogPath()), options);
 }
@@ -700,6 +765,38 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
         out.push_back(std::move(c));
       }
     }
+  }
+  // Approach composites: walk up, stop, (sit: turn round,) then the sit-down or reach clip;
+  // one per such clip (see ApproachSpec).
+  const WalkStyle* gait = nullptr;
+  for (const WalkRecipe& r : catalog.walk.recipes)
+    if (r.name == "walk_normal") gait = &r.gait;
+  const size_t n = out.size();
+  for (size_t i = 0; gait && i < n; ++i) {
+    const MotionMeta& m = out[i].meta();
+    const bool sit = wanted("sit") && m.skill == "sit" && m.name.rfind("sit_down", 0) == 0;
+    const bool reach = wanted("reach") && m.skill == "reach";
+    if (!sit && !reach) continue;
+    WalkSpec spec = ApproachSpec(*gait, sit);
+    spec.seed = 7 + i;
+    MotionClip c = ComposeAfter(GenerateWalk(spec, MotionMeta{}, fps), out[i], kApproachBlendTime);
+    MotionMeta& cm = c.mutable_meta();
+    if (sit) {
+      cm.name = "sit_approach" + m.name.substr(std::string("sit_down").size());
+      cm.style = "walk up, turn and sit";
+      cm.captions = {"a person walks up to a seat, turns around and sits down",
+                     "someone walks over, turns and takes a seat",
+                     "walking to a chair and sitting down on it"};
+      cm.source = "synthetic composite: walk, turn in place, " + m.name;
+    } else {
+      cm.name = "reach_approach" + m.name.substr(std::string("reach").size());
+      cm.style = "walk up and reach";
+      cm.captions = {"a person walks up to something and reaches for it",
+                     "someone walks over and stretches out a hand",
+                     "walking to a shelf and reaching out"};
+      cm.source = "synthetic composite: walk, stop, " + m.name;
+    }
+    out.push_back(std::move(c));
   }
   return out;
 }

@@ -34,7 +34,9 @@ void EnvConfig::Validate() const {
 }
 
 namespace {
-enum EndReason : uint8_t { kNone = 0, kFall, kTimeout, kTaskTerminate, kTaskTruncate, kUnstable };
+constexpr EndReason kNone = EndReason::kNone, kFall = EndReason::kFall,
+                    kTimeout = EndReason::kTimeout, kTaskTerminate = EndReason::kTaskTerminate,
+                    kTaskTruncate = EndReason::kTaskTruncate, kUnstable = EndReason::kUnstable;
 constexpr int kWatchedWarnings[] = {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC, mjWARN_BADCTRL};
 }  // namespace
 
@@ -56,6 +58,7 @@ struct BatchedEnv::Slot {
   std::vector<float> amp_hist;  // [amp_history, 125], slot 0 = current step
   int progress = 0;
   int grace = 0;
+  bool reference = false;  // the episode began from a motion-clip state
   int warnings_seen = 0;
   double targets[kNumDofs];
   double root_quat_before_pass[4];  // see RememberRootQuaternion
@@ -79,6 +82,8 @@ BatchedEnv::BatchedEnv(std::shared_ptr<const Humanoid> humanoid, const EnvConfig
   dones_.assign(n, 0);
   terminated_.assign(n, 0);
   successes_.assign(n, 0);
+  completions_.assign(n, 0);
+  episode_reference_.assign(n, 0);
   end_reason_.assign(n, kNone);
   slots_.resize(n);
   for (int i = 0; i < n; ++i) {
@@ -145,6 +150,7 @@ void BatchedEnv::ResetSlot(int i) {
   mj_resetData(m, d);
   s.progress = 0;
   s.grace = init.termination_grace_steps;
+  s.reference = init.reference;
   const int hist = config_.amp_history;
   // AMP history of a reference init: poses at t − k·dt evaluated with this env's data as scratch.
   const bool has_history = static_cast<int>(init.history.size()) >= hist - 1 && hist > 1;
@@ -245,7 +251,7 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   mj_step1(m, d);
   s.progress += 1;
 
-  uint8_t reason = kNone;
+  EndReason reason = kNone;
   TaskStepResult tr;
   if (Unstable(i)) {
     reason = kUnstable;
@@ -266,6 +272,8 @@ void BatchedEnv::StepEnv(int i, const float* action) {
 
   rewards_[i] = reason == kUnstable ? 0.0f : tr.reward;
   successes_[i] = tr.success ? 1 : 0;
+  completions_[i] = reason != kUnstable && tr.completed ? 1 : 0;
+  episode_reference_[i] = s.reference ? 1 : 0;
   float* row = obs_.data() + static_cast<size_t>(i) * obs_dim_;
   float* amp_row = amp_obs_.data() + static_cast<size_t>(i) * amp_obs_dim();
   if (reason != kUnstable) {
@@ -360,7 +368,7 @@ class ByteReader {
   const std::string& in_;
   size_t pos_ = 0;
 };
-constexpr uint32_t kStateMagic = 0x53494D53;  // "SIMS"
+constexpr uint32_t kStateMagic = 0x53494D32;  // "SIM2": slots carry the start kind
 }  // namespace
 
 std::string BatchedEnv::SaveState() const {
@@ -380,6 +388,7 @@ std::string BatchedEnv::SaveState() const {
     w.Put(rng.data(), rng.size());
     w.Put(s.progress);
     w.Put(s.grace);
+    w.Put(static_cast<uint8_t>(s.reference));
     w.Put(s.amp_hist.data(), s.amp_hist.size());
     w.Put(d->time);
     w.Put(d->qpos, m->nq);
@@ -418,6 +427,7 @@ void BatchedEnv::LoadState(const std::string& state) {
     s.rng.set_state(rng);
     s.progress = r.Get<int>();
     s.grace = r.Get<int>();
+    s.reference = r.Get<uint8_t>() != 0;
     r.Get(s.amp_hist.data(), s.amp_hist.size());
     mj_resetData(m, d);
     d->time = r.Get<double>();

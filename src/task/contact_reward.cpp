@@ -11,15 +11,23 @@ double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
                      const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
                      double target_speed, double contact_sq_sum) {
   const double r_near = std::exp(-10.0 * contact_sq_sum);
+  return kNearWeight * r_near + (1.0 - kNearWeight) * FarReward(anchor, root, velocity, facing,
+                                                                target_speed);
+}
+
+double FarReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
+                 const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
+                 double target_speed) {
   const Eigen::Vector2d delta = anchor - root;
   const double d2 = delta.squaredNorm();
-  if (d2 <= kFarDistanceSq) return 0.6 * r_near + 0.4;
+  if (d2 <= kFarDistanceSq) return 1.0;
   const Eigen::Vector2d dir = delta / std::sqrt(d2);
-  const double speed_err = target_speed - dir.dot(velocity);
-  const double facing_dot = dir.dot(facing);
-  const double r_far = 0.5 * std::exp(-0.5 * d2) + 0.4 * std::exp(-2.0 * speed_err * speed_err) +
-                       0.1 * facing_dot * facing_dot;
-  return 0.6 * r_near + 0.4 * r_far;
+  // Moving away earns nothing, and neither does facing away (not squared: ±cos alike).
+  const double v = dir.dot(velocity);
+  const double speed_err = target_speed - v;
+  const double r_speed = v > 0 ? std::exp(-2.0 * speed_err * speed_err) : 0.0;
+  const double r_face = std::max(0.0, dir.dot(facing));
+  return 0.5 * std::exp(-0.5 * d2) + 0.4 * r_speed + 0.1 * r_face;
 }
 
 bool ParseContactType(const std::string& text, ContactType* type) {

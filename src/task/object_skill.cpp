@@ -18,8 +18,6 @@ namespace sims::task {
 namespace {
 // Free floor: the precomputed height may be this high (rugs) and must be so around a point.
 constexpr double kFloorTolerance = 0.05;
-// Gap between a footprint and a stand point (m).
-constexpr double kStandDistance = 0.45;
 
 double YawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
 
@@ -51,6 +49,9 @@ void ObjectParams::Validate() const {
   Require(num_objects >= 0, "num_objects", "a non-negative count");
   Require(spawn_max_distance >= spawn_min_distance && spawn_min_distance >= 0, "spawn_max_distance",
           "a distance ≥ spawn_min_distance ≥ 0");
+  Require(spawn_arc_deg > 0 && spawn_arc_deg <= 360, "spawn_arc_deg", "an angle in (0, 360]");
+  Require(spawn_curriculum_step > 0 && spawn_curriculum_step <= 1, "spawn_curriculum_step",
+          "a level step in (0, 1]");
   Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
   Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
 }
@@ -169,6 +170,12 @@ bool ClipFurnitureFrame(const motion::MotionClip& clip, const ObjectGeometry& g,
   return true;
 }
 
+double SeatLateral(const ObjectGeometry& g, Rng& rng) {
+  if (g.seat < 0) return 0;
+  const double half = 0.5 * (g.seat_local.max.y() - g.seat_local.min.y()) - 0.35;
+  return half > 0 ? rng.Uniform(-half, half) : 0.0;
+}
+
 Eigen::Vector2d FacingOf(const sim::HumanoidPose& pose) {
   const double h = sim::HeadingAngle(pose.root_rot);
   return {std::cos(h), std::sin(h)};
@@ -187,6 +194,73 @@ ObjectSkill::ObjectSkill(const SkillConfig& config, const SkillContext& context)
   hold_.assign(n, 0);
   override_.assign(n, -1);
   error_.assign(n, 0.0);
+  target_W_.assign(n, Eigen::Vector3d::Zero());
+  anchor_W_.assign(n, Eigen::Vector2d::Zero());
+  level_.assign(n, config.object.spawn_curriculum ? 0.0 : 1.0);
+  started_.assign(n, 0);
+  reference_.assign(n, 0);
+}
+
+void ObjectSkill::SetSpawnLevel(int env_id, double level) {
+  SIMS_CHECK(level >= 0 && level <= 1);
+  level_[env_id] = level;
+}
+
+double ObjectSkill::ClipContactTime(int clip) const {
+  return context_.motions->clip(clip).duration();
+}
+
+void ObjectSkill::PrepareReferenceClips() {
+  if (!context_.motions) return;
+  pre_contact_.assign(context_.motions->num_clips(), -1.0);
+  std::vector<int> kept;
+  for (int c : reference_clips_) {
+    const double t = ClipContactTime(c);
+    if (t < kMinPreContactTime) continue;  // already in contact: idle clips
+    pre_contact_[c] = t;
+    kept.push_back(c);
+  }
+  reference_clips_ = std::move(kept);
+}
+
+double ObjectSkill::pre_contact_time(int clip) const {
+  return clip >= 0 && clip < static_cast<int>(pre_contact_.size()) ? pre_contact_[clip] : -1.0;
+}
+
+double ObjectSkill::PreContactTime(int clip, Rng& rng) const {
+  const double duration = context_.motions->clip(clip).duration();
+  double end = config_.reference_init_max_fraction * duration;
+  const double contact = pre_contact_time(clip);
+  if (contact >= 0) end = std::min(end, contact);
+  return rng.Uniform(0.0, end);
+}
+
+void ObjectSkill::SetEpisodeTarget(int env_id, const Eigen::Vector3d& target_W,
+                                   const Eigen::Vector2d& anchor_W) {
+  target_W_[env_id] = target_W;
+  anchor_W_[env_id] = anchor_W;
+}
+
+void ObjectSkill::ObserveTask(const sim::EnvView& view, float* out) const {
+  if (!observes_object()) return;
+  const int i = view.env_id;
+  const sim::BodyStates& b = *view.bodies;
+  const Eigen::Vector3d root = b.pos[sim::kPelvis];
+  const Eigen::Quaterniond h_inv = sim::HeadingInverse(b.rot[sim::kPelvis]);
+  auto put = [&out](const Eigen::Vector3d& v) {
+    for (int k = 0; k < 3; ++k) *out++ = static_cast<float>(v[k]);
+  };
+  put(h_inv * (target_W_[i] - root));
+  const ObjectGeometry& g = geometry(i);
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d p_O((c & 1) ? g.local.max.x() : g.local.min.x(),
+                              (c & 2) ? g.local.max.y() : g.local.min.y(),
+                              (c & 4) ? g.local.max.z() : g.local.min.z());
+    put(h_inv * (g.ToWorld(p_O) - root));
+  }
+  const Eigen::Vector3d facing = h_inv * (g.X_WO.linear() * Eigen::Vector3d::UnitX());
+  *out++ = static_cast<float>(facing.x());
+  *out++ = static_cast<float>(facing.y());
 }
 
 void ObjectSkill::CollectObjects(const std::string& what) {
@@ -256,12 +330,15 @@ bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
   return FreeAt(*context_.height_grid, p, radius);
 }
 
-Eigen::Vector2d ObjectSkill::SpawnPoint(const ObjectGeometry& g, Rng& rng) const {
+Eigen::Vector2d ObjectSkill::SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const {
+  const auto& o = config_.object;
+  const double far = o.spawn_min_distance + level_[env_id] * (o.spawn_max_distance -
+                                                              o.spawn_min_distance);
+  const double half_arc = 0.5 * o.spawn_arc_deg * M_PI / 180.0;
   Eigen::Vector2d p = g.center;
   for (int attempt = 0; attempt < 32; ++attempt) {
-    const double r = g.radius + rng.Uniform(config_.object.spawn_min_distance,
-                                            config_.object.spawn_max_distance);
-    const double a = rng.Uniform(-M_PI, M_PI);
+    const double r = g.radius + rng.Uniform(o.spawn_min_distance, far);
+    const double a = g.yaw + rng.Uniform(-half_arc, half_arc);
     p = g.center + r * Eigen::Vector2d(std::cos(a), std::sin(a));
     if (FreeFloor(p, 0.35)) return p;
   }
@@ -269,7 +346,7 @@ Eigen::Vector2d ObjectSkill::SpawnPoint(const ObjectGeometry& g, Rng& rng) const
 }
 
 void ObjectSkill::DefaultInit(int env_id, Rng& rng, sim::InitialState* init) {
-  const Eigen::Vector2d p = SpawnPoint(geometry(env_id), rng);
+  const Eigen::Vector2d p = SpawnPoint(env_id, geometry(env_id), rng);
   const double yaw = rng.Uniform(-M_PI, M_PI);
   init->pose.root_pos.x() = p.x();
   init->pose.root_pos.y() = p.y();
@@ -279,6 +356,13 @@ void ObjectSkill::DefaultInit(int env_id, Rng& rng, sim::InitialState* init) {
 }
 
 void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
+  // The curriculum learns from the episode that just ended (default starts only: reference
+  // starts begin next to the object whatever the level).
+  if (config_.object.spawn_curriculum && started_[env_id] && !reference_[env_id]) {
+    const double step = config_.object.spawn_curriculum_step;
+    const bool done = hold_[env_id] >= config_.success_hold_steps;
+    level_[env_id] = std::clamp(level_[env_id] + (done ? step : -0.5 * step), 0.0, 1.0);
+  }
   const int n = static_cast<int>(objects_.size());
   object_[env_id] =
       override_[env_id] >= 0 ? override_[env_id] : static_cast<int>(rng.UniformInt(n));
@@ -288,6 +372,8 @@ void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* in
   const bool try_reference =
       context_.motions && !ReferenceClips().empty() && rng.Bernoulli(config_.reference_init_prob);
   if (!(try_reference && ReferenceInit(env_id, rng, init))) DefaultInit(env_id, rng, init);
+  started_[env_id] = 1;
+  reference_[env_id] = init->reference ? 1 : 0;
 }
 
 void ObjectSkill::PlaceReference(int env_id, int clip, double t, const ClipPlacement& placement,
@@ -301,14 +387,8 @@ void ObjectSkill::PlaceReference(int env_id, int clip, double t, const ClipPlace
 }
 
 int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g,
-                                     Rng& rng, ClipPlacement* placement) const {
+                                     double lateral, Rng& rng, ClipPlacement* placement) const {
   if (!context_.motions) return -1;
-  // A random lateral seat position on wide seats (sofas), so envs do not all use the middle.
-  double lateral = 0;
-  if (g.seat >= 0) {
-    const double half = 0.5 * (g.seat_local.max.y() - g.seat_local.min.y()) - 0.35;
-    if (half > 0) lateral = rng.Uniform(-half, half);
-  }
   std::vector<int> fitting;
   std::vector<ClipPlacement> placements;
   for (int c : clips) {
@@ -327,24 +407,22 @@ int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const Object
   return fitting[k];
 }
 
-bool ObjectSkill::FurnitureClipInit(int env_id, Rng& rng, sim::InitialState* init) {
+bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng,
+                                    sim::InitialState* init) {
   ClipPlacement placement;
-  const int clip = ChooseFurnitureClip(reference_clips_, geometry(env_id), rng, &placement);
+  const int clip =
+      ChooseFurnitureClip(reference_clips_, geometry(env_id), lateral, rng, &placement);
   if (clip < 0) return false;
-  const double t = context_.motions->SampleTime(clip, rng, config_.reference_init_max_fraction);
-  PlaceReference(env_id, clip, t, placement, init);
+  PlaceReference(env_id, clip, PreContactTime(clip, rng), placement, init);
   return true;
 }
 
-sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view,
-                                                   const Eigen::Vector3d& anchor_local,
-                                                   double goal_sum, double d) {
-  const ObjectGeometry& g = geometry(view.env_id);
+sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view, double goal_sum,
+                                                   double d) {
   error_[view.env_id] = d;
-  const Eigen::Vector2d anchor = g.ToWorld(anchor_local).head<2>();
-  const double r =
-      ContactReward(anchor, view.pose->root_pos.head<2>(), view.pose->root_lin_vel.head<2>(),
-                    FacingOf(*view.pose), config_.target_speed, goal_sum);
+  const double r = ContactReward(anchor_W_[view.env_id], view.pose->root_pos.head<2>(),
+                                 view.pose->root_lin_vel.head<2>(), FacingOf(*view.pose),
+                                 config_.target_speed, goal_sum);
   return Finish(view, r, d < config_.object.contact_success_threshold);
 }
 
@@ -354,7 +432,8 @@ sim::TaskStepResult ObjectSkill::Finish(const sim::EnvView& view, double reward,
   r.reward = static_cast<float>(reward);
   r.success = success;
   hold_[i] = success ? hold_[i] + 1 : 0;
-  if (hold_[i] >= config_.success_hold_steps) r.truncate = true;
+  r.completed = hold_[i] >= config_.success_hold_steps;
+  if (r.completed) r.truncate = true;
   if (config_.object.max_contact_force > 0 && ContactForce(view) > config_.object.max_contact_force)
     r.terminate = true;
   return r;
@@ -364,15 +443,27 @@ void ObjectSkill::SaveTaskState(int, std::vector<double>*) const {}
 size_t ObjectSkill::LoadTaskState(int, const double*, size_t) { return 0; }
 
 std::vector<double> ObjectSkill::SaveSkillState(int env_id) const {
-  std::vector<double> s = {static_cast<double>(object_[env_id]), static_cast<double>(hold_[env_id]),
-                           error_[env_id]};
+  const Eigen::Vector3d& t = target_W_[env_id];
+  const Eigen::Vector2d& a = anchor_W_[env_id];
+  std::vector<double> s = {static_cast<double>(object_[env_id]),
+                           static_cast<double>(hold_[env_id]),
+                           error_[env_id],
+                           t.x(),
+                           t.y(),
+                           t.z(),
+                           a.x(),
+                           a.y(),
+                           level_[env_id],
+                           static_cast<double>(started_[env_id]),
+                           static_cast<double>(reference_[env_id])};
   SaveTaskState(env_id, &s);
   return s;
 }
 
 void ObjectSkill::LoadSkillState(int env_id, const double* d, size_t size) {
-  if (size < 3)
-    ThrowInputError(name() + " skill state", "size", "at least 3 values", std::to_string(size));
+  constexpr size_t kBase = 11;
+  if (size < kBase)
+    ThrowInputError(name() + " skill state", "size", "at least 11 values", std::to_string(size));
   const int k = static_cast<int>(d[0]);
   if (k < 0 || k >= static_cast<int>(objects_.size()))
     ThrowInputError(name() + " skill state", "object", "an object of this scene",
@@ -380,8 +471,13 @@ void ObjectSkill::LoadSkillState(int env_id, const double* d, size_t size) {
   object_[env_id] = k;
   hold_[env_id] = static_cast<int>(d[1]);
   error_[env_id] = d[2];
-  const size_t used = LoadTaskState(env_id, d + 3, size - 3);
-  if (used != size - 3)
+  target_W_[env_id] = Eigen::Vector3d(d[3], d[4], d[5]);
+  anchor_W_[env_id] = Eigen::Vector2d(d[6], d[7]);
+  level_[env_id] = d[8];
+  started_[env_id] = d[9] != 0;
+  reference_[env_id] = d[10] != 0;
+  const size_t used = LoadTaskState(env_id, d + kBase, size - kBase);
+  if (used != size - kBase)
     ThrowInputError(name() + " skill state", "size", "a snapshot of this skill",
                     std::to_string(size) + " values");
 }

@@ -42,17 +42,26 @@ Skill::Skill(const SkillConfig& config, const SkillContext& context)
 
 Skill::~Skill() = default;
 
-int Skill::obs_dim() const { return kContactGoalDim + heightmap_->size() + kStyleDim; }
+int Skill::obs_dim() const {
+  return kContactGoalDim + task_obs_dim() + heightmap_->size() + kStyleDim;
+}
 
 std::vector<sim::ObsSegment> Skill::obs_segments() const {
-  sim::ObsSegment goal{"contact_goal", sim::ObsSegment::Kind::kVector, 0, kContactGoalDim, 0, 0};
-  sim::ObsSegment hm{
-      "heightmap",        sim::ObsSegment::Kind::kHeightmap, kContactGoalDim,
-      heightmap_->size(), config_.heightmap.size_y,          config_.heightmap.size_x};
-  sim::ObsSegment z{
-      "z", sim::ObsSegment::Kind::kStyle, kContactGoalDim + heightmap_->size(), kStyleDim, 0, 0};
-  return {goal, hm, z};
+  using Kind = sim::ObsSegment::Kind;
+  std::vector<sim::ObsSegment> out = {{"contact_goal", Kind::kVector, 0, kContactGoalDim, 0, 0}};
+  int at = kContactGoalDim;
+  if (task_obs_dim() > 0) {
+    out.push_back({"task", Kind::kVector, at, task_obs_dim(), 0, 0});
+    at += task_obs_dim();
+  }
+  out.push_back({"heightmap", Kind::kHeightmap, at, heightmap_->size(), config_.heightmap.size_y,
+                 config_.heightmap.size_x});
+  at += heightmap_->size();
+  out.push_back({"z", Kind::kStyle, at, kStyleDim, 0, 0});
+  return out;
 }
+
+void Skill::ObserveTask(const sim::EnvView&, float*) const {}
 
 void Skill::SetGoal(int env_id, int joint, const Eigen::Vector3d& target) {
   goals_[env_id][joint] = target;
@@ -122,6 +131,8 @@ void Skill::Observe(const sim::EnvView& view, float* out) const {
       o[0] = o[1] = o[2] = o[3] = 0.0f;
     }
   }
+  ObserveTask(view, o);
+  o += task_obs_dim();
   heightmap_->SampleOne(b.pos[sim::kPelvis], sim::HeadingAngle(b.rot[sim::kPelvis]), o);
   o += heightmap_->size();
   const Eigen::VectorXf* z = nullptr;

@@ -9,17 +9,33 @@ namespace sims::task {
 
 SurfaceSkill::SurfaceSkill(const SkillConfig& config, const SkillContext& context, SurfaceTask task)
     : ObjectSkill(config, context), task_(std::move(task)) {
+  SIMS_CHECK(task_.target_local && task_.anchor_local);
+  lateral_.assign(context.num_envs, 0.0);
   reference_clips_.clear();
   if (context.motions) reference_clips_ = context.motions->Find(task_.clip_skill);
+  PrepareReferenceClips();
   CollectObjects(task_.what);
   // The extra joint's candidate parts depend only on the object and the config.
   for (const ObjectGeometry& g : objects_)
     extra_parts_.push_back(task_.extra_parts ? task_.extra_parts(g, config_) : std::vector<int>{});
 }
 
-Eigen::Vector3d SurfaceSkill::PelvisTarget(int env_id, const Eigen::Vector3d& pelvis) const {
-  const ObjectGeometry& g = geometry(env_id);
-  return NearestOnPart(*context_.scene, g.object, g.*task_.pelvis_part, pelvis);
+double SurfaceSkill::ClipContactTime(int clip) const {
+  // The clips end on the furniture: contact begins once the pelvis is within the success
+  // distance (with margin) of where it ends.
+  const motion::MotionClip& c = context_.motions->clip(clip);
+  const Eigen::Vector3d end = c.FramePose(c.num_frames() - 1).root_pos;
+  const double reach = kPreContactMargin * config_.object.contact_success_threshold;
+  for (int f = 0; f < c.num_frames(); ++f)
+    if ((c.FramePose(f).root_pos - end).norm() < reach) return f / c.fps();
+  return c.duration();
+}
+
+void SurfaceSkill::SampleTask(int i, Rng& rng) {
+  const ObjectGeometry& g = geometry(i);
+  lateral_[i] = task_.lateral ? task_.lateral(g, rng) : 0.0;
+  SetEpisodeTarget(i, g.ToWorld(task_.target_local(g, lateral_[i], config_)),
+                   g.ToWorld(task_.anchor_local(g, lateral_[i])).head<2>());
 }
 
 double SurfaceSkill::UpdateGoals(int i, const sim::BodyStates& b, double* success_distance) {
@@ -27,7 +43,7 @@ double SurfaceSkill::UpdateGoals(int i, const sim::BodyStates& b, double* succes
   const scene::Scene& s = *context_.scene;
   ClearGoals(i);
   const Eigen::Vector3d x = sim::ContactJointPosition(b, sim::kCjPelvis);
-  const Eigen::Vector3d m = PelvisTarget(i, x);
+  const Eigen::Vector3d& m = target(i);
   SetGoal(i, sim::kCjPelvis, m);
   double sum = (m - x).squaredNorm();
   double worst = (m - x).norm();
@@ -57,12 +73,21 @@ void SurfaceSkill::OnReset(const sim::EnvView& view, Rng&) {
 sim::TaskStepResult SurfaceSkill::Step(const sim::EnvView& view) {
   double d = 0;
   const double sum = UpdateGoals(view.env_id, *view.bodies, &d);
-  const scene::Aabb& part = geometry(view.env_id).*task_.pelvis_bounds;
-  return ContactRewardStep(view, part.center(), sum, d);
+  return ContactRewardStep(view, sum, d);
 }
 
 bool SurfaceSkill::ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) {
-  return FurnitureClipInit(env_id, rng, init);
+  return FurnitureClipInit(env_id, lateral_[env_id], rng, init);
+}
+
+void SurfaceSkill::SaveTaskState(int env_id, std::vector<double>* out) const {
+  out->push_back(lateral_[env_id]);
+}
+
+size_t SurfaceSkill::LoadTaskState(int env_id, const double* data, size_t size) {
+  if (size < 1) return 0;
+  lateral_[env_id] = data[0];
+  return 1;
 }
 
 }  // namespace sims::task

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sims/core/error.h"
 #include "sims/core/parallel.h"
 
 namespace sims::learning {
@@ -39,6 +40,54 @@ TEST(NetworksTest, EncoderRoutesSegments) {
   ActorCritic ac(segs, 4, c);
   EXPECT_EQ(ac->Mean(torch::zeros({2, 24}), raw).sizes(), (std::vector<int64_t>{2, 4}));
   EXPECT_EQ(ac->Value(torch::zeros({2, 24}), raw).sizes(), (std::vector<int64_t>{2}));
+}
+
+// A warm start from another task's layout (walk → an object skill with a new "task" segment):
+// the new inputs start with zero weights and unit statistics, so the warm-started networks
+// act exactly as the source on the inputs they share, whatever the new inputs hold.
+TEST(NetworksTest, ImportAcrossLayoutsKeepsTheSourcePolicy) {
+  using Kind = sim::ObsSegment::Kind;
+  const std::vector<sim::ObsSegment> src_segs = {{"self", Kind::kVector, 0, 5, 0, 0},
+                                                 {"contact_goal", Kind::kVector, 5, 4, 0, 0},
+                                                 {"heightmap", Kind::kHeightmap, 9, 16, 4, 4},
+                                                 {"z", Kind::kStyle, 25, 3, 0, 0}};
+  const std::vector<sim::ObsSegment> dst_segs = {{"self", Kind::kVector, 0, 5, 0, 0},
+                                                 {"contact_goal", Kind::kVector, 5, 4, 0, 0},
+                                                 {"task", Kind::kVector, 9, 6, 0, 0},
+                                                 {"heightmap", Kind::kHeightmap, 15, 16, 4, 4},
+                                                 {"z", Kind::kStyle, 31, 3, 0, 0}};
+  NetworkConfig c;
+  c.actor_hidden = {16, 16};
+  c.critic_hidden = {16};
+  c.heightmap_hidden = {8, 6};
+  torch::manual_seed(5);
+  ActorCritic src(src_segs, 4, c), dst(dst_segs, 4, c);
+  {
+    torch::NoGradGuard g;
+    for (auto& p : src->parameters()) p.copy_(torch::randn_like(p));  // not the small init
+  }
+  RunningMeanStd src_norm(28), dst_norm(34);
+  src_norm->Update(torch::randn({64, 28}) * 3 + 1);
+  const auto fresh = ImportAcrossLayouts(src, src_norm, src_segs, dst, dst_norm, dst_segs, c);
+  EXPECT_EQ(fresh, std::vector<std::string>{"task"});
+  const auto raw_src = torch::randn({8, 28}) * 2;
+  const auto task = torch::randn({8, 6}) * 10;
+  const auto raw_dst =
+      torch::cat({raw_src.slice(1, 0, 9), task, raw_src.slice(1, 9, 28)}, 1).contiguous();
+  const auto n_src = src_norm->Normalize(raw_src), n_dst = dst_norm->Normalize(raw_dst);
+  EXPECT_TRUE(torch::allclose(n_dst.slice(1, 0, 9), n_src.slice(1, 0, 9)));
+  EXPECT_TRUE(torch::allclose(n_dst.slice(1, 15, 31), n_src.slice(1, 9, 25)));
+  // New inputs: mean 0, variance 1 (then clamped at ±5).
+  EXPECT_TRUE(torch::allclose(n_dst.slice(1, 9, 15), torch::clamp(task / std::sqrt(1 + 1e-5), -5, 5),
+                              1e-4));
+  EXPECT_TRUE(torch::allclose(dst->Mean(n_dst, raw_dst), src->Mean(n_src, raw_src), 1e-5, 1e-5));
+  EXPECT_TRUE(torch::allclose(dst->Value(n_dst, raw_dst), src->Value(n_src, raw_src), 1e-5, 1e-5));
+  // A different network cannot be imported.
+  NetworkConfig other = c;
+  other.actor_hidden = {32, 16};
+  ActorCritic wide(dst_segs, 4, other);
+  EXPECT_THROW(ImportAcrossLayouts(src, src_norm, src_segs, wide, dst_norm, dst_segs, other),
+               Error);
 }
 
 // OpenBLAS splits a GEMM's inner dimension differently with one thread than with several once

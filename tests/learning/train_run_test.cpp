@@ -67,6 +67,10 @@ TEST(TrainRunTest, LogsEndToEndRateAndTimeSplit) {
     EXPECT_GT(t.values[Column(t, "ppo_seconds")][r], 0);
   }
   EXPECT_GT(t.values[Column(t, "logging_seconds")][2], 0);
+  // Falls, force terminations and success by start kind are separate columns.
+  for (const char* name : {"fall_rate", "force_end_rate", "reference_start_share",
+                           "success_rate_reference", "success_rate_default"})
+    EXPECT_GE(Column(t, name), 0) << name;
 }
 
 // A run logged by an older train_policy (fewer trailing columns) resumes: the header becomes

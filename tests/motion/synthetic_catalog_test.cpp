@@ -47,10 +47,11 @@ TEST(SyntheticCatalogTest, ShippedCatalogueLoadsAndValidates) {
   EXPECT_EQ(c.lie_idle.recipes.size(), 3u);
   EXPECT_EQ(c.reach.recipes.size(), 6u);
   ValidateConfig(c, "round trip");
-  // Six reaches, two variants each by default (as in the shipped data/motions/synthetic).
+  // Six reaches, two variants each by default (as in the shipped data/motions/synthetic),
+  // and a walk-up composite of each.
   SyntheticOptions o;
   o.skills = {"reach"};
-  EXPECT_EQ(GenerateSyntheticClips(c, o).size(), 12u);
+  EXPECT_EQ(GenerateSyntheticClips(c, o).size(), 24u);
 }
 
 TEST(SyntheticCatalogTest, MalformedCatalogueNamesFileFieldAndExpectation) {

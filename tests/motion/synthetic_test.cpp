@@ -74,6 +74,44 @@ TEST(SyntheticTest, CatalogueCoversSkillsWithLabels) {
   EXPECT_GT(ByName("lie_down_bed").meta().params.at("furniture_height"), 0.35);
 }
 
+// The sit approach composites: a walk-up and a 180° turn that end where the sit-down clip
+// begins, then that clip unchanged after the crossfade (its furniture parameters still hold).
+TEST(SyntheticTest, ApproachCompositesEndInTheSitDownClip) {
+  for (const char* seat : {"chair", "sofa", "stool"}) {
+    SCOPED_TRACE(seat);
+    const MotionClip& sit = ByName(std::string("sit_down_") + seat);
+    const MotionClip& c = ByName(std::string("sit_approach_") + seat);
+    EXPECT_EQ(c.meta().skill, "sit");
+    EXPECT_EQ(c.meta().params, sit.meta().params);
+    const int lead = c.num_frames() - sit.num_frames();
+    ASSERT_GT(lead, 90);  // more than 3 s of walking up and turning
+    const int blend = 9;  // 0.3 s
+    for (int k = blend; k < sit.num_frames(); k += 7) {
+      EXPECT_NEAR((c.frame(lead + k).root_pos - sit.frame(k).root_pos).norm(), 0, 1e-12);
+      EXPECT_NEAR((c.frame(lead + k).dof_pos - sit.frame(k).dof_pos).norm(), 0, 1e-12);
+    }
+    // It starts ~2 m in front of the seat (+x), facing it (−x), and turns round on the way.
+    const Eigen::Vector3d start = c.frame(0).root_pos;
+    EXPECT_GT(start.x() - sit.frame(0).root_pos.x(), 1.5);
+    EXPECT_LT(std::abs(start.y() - sit.frame(0).root_pos.y()), 0.3);
+    const Eigen::Vector3d fwd = c.frame(0).root_rot * Eigen::Vector3d::UnitX();
+    EXPECT_LT(fwd.x(), -0.9);
+  }
+}
+
+TEST(SyntheticTest, ComposeAfterJoinsAtTheClipStart) {
+  const MotionClip& walk = ByName("walk_normal");
+  const MotionClip& sit = ByName("sit_down_chair");
+  const MotionClip c = ComposeAfter(walk.Slice(0, 40), sit, 0.0);
+  ASSERT_EQ(c.num_frames(), 39 + sit.num_frames());
+  // The lead's last frame would sit on the clip's first: the frame before it is one walk
+  // step behind, heading the same way as the clip starts.
+  const Eigen::Vector3d step = c.frame(39).root_pos - c.frame(38).root_pos;
+  EXPECT_LT(Eigen::Vector2d(step.x(), step.y()).norm(), 0.1);
+  EXPECT_NEAR((c.frame(39).root_pos - sit.frame(0).root_pos).norm(), 0, 1e-12);
+  EXPECT_EQ(c.meta().name, sit.meta().name);
+}
+
 // Joint limits, no floor penetration, little self-contact, planted feet do not slide.
 TEST(SyntheticTest, ClipsArePlausible) {
   for (const MotionClip& c : Catalogue()) {
@@ -172,7 +210,7 @@ TEST(SyntheticTest, DeterministicForASeed) {
   o.seed = 6;
   const auto c = GenerateSyntheticClips(o);
   ASSERT_EQ(a.size(), b.size());
-  ASSERT_EQ(a.size(), 12u);
+  ASSERT_EQ(a.size(), 24u);  // 6 reaches × 2 variants, plus their walk-up composites
   bool differs = false;
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a[i].num_frames(), b[i].num_frames());

@@ -71,20 +71,29 @@ TEST(LieSkillTest, GoalsRewardAndThreshold) {
   c.object.max_contact_force = 0;
   auto s = MakeSkillEnv(c, 2);
   auto* lie = dynamic_cast<LieSkill*>(s.setup.skill.get());
-  EXPECT_EQ(s.env->obs_dim(), 223 + 60 + 256 + 64);
+  EXPECT_EQ(s.env->obs_dim(), 223 + 60 + kObjectObsDim + 256 + 64);
   EXPECT_EQ(lie->goal_mask(0), (1u << sim::kCjPelvis) | (1u << sim::kCjHead));
-  // Pelvis 0.25 m above the mattress centre: near form; success needs both joints < 0.3 m.
+  // The pelvis target: the mattress centre, 0.11 m above its top (the lie clips' pelvis).
   const ObjectGeometry& g = lie->geometry(0);
-  const Eigen::Vector3d top = g.ToWorld(Eigen::Vector3d(
-      g.mattress_local.center().x(), g.mattress_local.center().y(), g.mattress_local.max.z()));
-  s.env->SetState(0, PoseAt(top + Eigen::Vector3d(0, 0, 0.25)));
+  const Eigen::Vector3d target = g.ToWorld(Eigen::Vector3d(
+      g.mattress_local.center().x(), g.mattress_local.center().y(), g.mattress_local.max.z() + 0.11));
+  EXPECT_NEAR((lie->target(0) - target).norm(), 0, 1e-9);
+  // The anchor stands beside the bed's long side (the episode's side).
+  const Eigen::Vector3d a_O =
+      g.X_WO.inverse() * Eigen::Vector3d(lie->anchor(0).x(), lie->anchor(0).y(), 0);
+  EXPECT_NEAR(std::abs(a_O.y()), 0.5 * (g.local.max.y() - g.local.min.y()) + kStandDistance, 0.05);
+  // Pelvis 0.25 m above the target; success needs both joints < 0.3 m.
+  s.env->SetState(0, PoseAt(target + Eigen::Vector3d(0, 0, 0.25)));
   const auto r = lie->Step(ViewOf(*s.env, 0));
   const auto& b = s.env->bodies(0);
   const Eigen::Vector3d dp = lie->goal(0, sim::kCjPelvis) - sim::ContactJointPosition(b, 0);
   const Eigen::Vector3d dh =
       lie->goal(0, sim::kCjHead) - sim::ContactJointPosition(b, sim::kCjHead);
   EXPECT_NEAR(dp.norm(), 0.25, 1e-6);
-  EXPECT_NEAR(r.reward, 0.6 * std::exp(-10 * (dp.squaredNorm() + dh.squaredNorm())) + 0.4, 1e-5);
+  const double r_far = FarReward(lie->anchor(0), s.env->pose(0).root_pos.head<2>(),
+                                 Eigen::Vector2d::Zero(), FacingOf(s.env->pose(0)), 1.0);
+  EXPECT_NEAR(r.reward, 0.7 * std::exp(-10 * (dp.squaredNorm() + dh.squaredNorm())) + 0.3 * r_far,
+              1e-5);
   EXPECT_EQ(r.success, dh.norm() < 0.3);
   EXPECT_NEAR(lie->goal_error(0), std::max(dp.norm(), dh.norm()), 1e-9);
 }

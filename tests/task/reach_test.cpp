@@ -29,7 +29,7 @@ TEST(ReachSkillTest, TargetsOnTheFrontInHeightBands) {
   auto s = MakeSkillEnv(c, 8);
   auto* reach = dynamic_cast<ReachSkill*>(s.setup.skill.get());
   ASSERT_NE(reach, nullptr);
-  EXPECT_EQ(s.env->obs_dim(), 223 + 60 + 256 + 64);
+  EXPECT_EQ(s.env->obs_dim(), 223 + 60 + kObjectObsDim + 256 + 64);
   // The shelf has targets at all three heights.
   for (int b = 0; b < 3; ++b) EXPECT_FALSE(reach->candidates(0, b).empty()) << b;
   for (int i = 0; i < 8; ++i) {
@@ -54,8 +54,9 @@ TEST(ReachSkillTest, ReferenceInitFacesTheTarget) {
   for (int i = 0; i < 8; ++i) {
     const Eigen::Vector2d to_target =
         reach->target(i).head<2>() - s.env->pose(i).root_pos.head<2>();
-    if (to_target.norm() > 0.8) continue;  // default init (no fitting clip or blocked floor)
+    if (!reach->reference_start(i)) continue;  // default init (no fitting clip or blocked floor)
     ++placed;
+    EXPECT_LT(to_target.norm(), 3.0);  // at most an approach composite's walk-up away
     const ObjectGeometry& g = reach->geometry(i);
     // Facing the object's front (object −x).
     const double heading = sim::HeadingAngle(s.env->pose(i).root_rot);
@@ -71,16 +72,53 @@ TEST(ReachSkillTest, RewardAndThreshold) {
   c.reference_init_prob = 0;
   auto s = MakeSkillEnv(c, 1);
   auto* reach = dynamic_cast<ReachSkill*>(s.setup.skill.get());
+  const ObjectGeometry& g = reach->geometry(0);
+  // Stand on the far anchor of a front target, facing the object.
+  const int band = reach->candidates(reach->object(0), 1).empty() ? 0 : 1;
+  const Eigen::Vector3d front = reach->candidates(reach->object(0), band).front();
+  reach->SetTarget(0, sim::kCjRightHand, front);
+  const Eigen::Vector3d a_O =
+      g.X_WO.inverse() * Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0);
+  EXPECT_NEAR(a_O.x(), g.local.max.x() + kStandDistance, 1e-9);
+  EXPECT_NEAR(a_O.y(), (g.X_WO.inverse() * front).y(), 1e-9);
+  s.env->SetState(0, PoseAt(Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0.89),
+                            g.yaw + M_PI));
   const Eigen::Vector3d hand = sim::ContactJointPosition(s.env->bodies(0), sim::kCjRightHand);
-  const Eigen::Vector2d root = s.env->pose(0).root_pos.head<2>();
   for (double d : {0.15, 0.25}) {
     reach->SetTarget(0, sim::kCjRightHand, hand + Eigen::Vector3d(0, 0, d));
     const auto r = reach->Step(ViewOf(*s.env, 0));
     EXPECT_EQ(r.success, d < 0.2);
     EXPECT_NEAR(reach->goal_error(0), d, 1e-9);
-    // Near form when the target is within √0.5 m of the root in xy.
-    ASSERT_LT((hand.head<2>() - root).squaredNorm(), kFarDistanceSq);
-    EXPECT_NEAR(r.reward, 0.6 * std::exp(-10 * d * d) + 0.4, 1e-5);
+    // Within √0.5 m of the anchor: r_far = 1.
+    ASSERT_LT((reach->anchor(0) - s.env->pose(0).root_pos.head<2>()).squaredNorm(),
+              kFarDistanceSq);
+    EXPECT_NEAR(r.reward, 0.7 * std::exp(-10 * d * d) + 0.3, 1e-5);
+  }
+}
+
+TEST(ReachSkillTest, StartsAreBeforeContactAndInFront) {
+  SkillConfig c = ReachConfig();
+  c.reference_init_prob = 0.5;
+  c.object.spawn_arc_deg = 180;
+  auto s = MakeSkillEnv(c, 8);
+  auto* reach = dynamic_cast<ReachSkill*>(s.setup.skill.get());
+  const auto& lib = *s.setup.context.motions;
+  for (int clip : lib.Find("reach")) {
+    // The clips reach at 1.5 s and hold until 2.6 s of their 4.3 s (the approach composites
+    // walk up first); the window ends before the hand arrives.
+    SCOPED_TRACE(lib.clip(clip).meta().name);
+    EXPECT_GT(reach->pre_contact_time(clip), kMinPreContactTime);
+    EXPECT_LT(reach->pre_contact_time(clip), lib.clip(clip).duration() - 2.8);
+  }
+  for (int round = 0; round < 5; ++round) {
+    for (int i = 0; i < 8; ++i) {
+      s.env->ResetEnv(i);
+      EXPECT_GT(reach->goal_error(i), c.object.contact_success_threshold);
+      // Default starts lie in the half-plane in front of the object.
+      const ObjectGeometry& g = reach->geometry(i);
+      const Eigen::Vector2d p = s.env->pose(i).root_pos.head<2>() - g.center;
+      EXPECT_GT(p.dot(Eigen::Vector2d(std::cos(g.yaw), std::sin(g.yaw))), -1e-9);
+    }
   }
 }
 

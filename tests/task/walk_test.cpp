@@ -19,10 +19,20 @@ TEST(WalkRewardTest, MatchesTheStatedFormula) {
   const double r_far = 0.6 * std::exp(-0.5 * 4) + 0.2 * 1.0 + 0.2 * 1.0;
   EXPECT_NEAR(WalkSkill::Reward(target, zero, x, x, x, 1.0), 0.4 * std::exp(-40.0) + 0.5 * r_far,
               1e-12);
-  // Facing sideways and standing: the speed and facing terms vanish.
-  const double r_far2 = 0.6 * std::exp(-2.0) + 0.2 * std::exp(-2.0);
+  // Facing sideways and standing: the speed and facing terms vanish (standing still is not
+  // moving towards it).
+  const double r_far2 = 0.6 * std::exp(-2.0);
   EXPECT_NEAR(WalkSkill::Reward(target, zero, zero, zero, Eigen::Vector2d(0, 1), 1.0),
               0.4 * std::exp(-40.0) + 0.5 * r_far2, 1e-12);
+  // Walking away, facing away: neither the speed nor the facing term pays.
+  const double r_far3 = 0.6 * std::exp(-2.0);
+  EXPECT_NEAR(WalkSkill::Reward(target, zero, -x, -x, -x, 1.0),
+              0.4 * std::exp(-40.0) + 0.5 * r_far3, 1e-12);
+  // Facing half-way towards it: the facing term is cos 60° = 0.5, not its square.
+  const Eigen::Vector2d half(0.5, std::sqrt(3.0) / 2);
+  const double r_far4 = 0.6 * std::exp(-2.0) + 0.2 * 0.5;
+  EXPECT_NEAR(WalkSkill::Reward(target, zero, zero, zero, half, 1.0),
+              0.4 * std::exp(-40.0) + 0.5 * r_far4, 1e-12);
 }
 
 TEST(SkillRegistryTest, UnknownSkillListsKnownOnes) {

@@ -39,8 +39,9 @@ struct PolicyEvalOptions {
 /// One trial.
 struct TrialResult {
   bool success = false;      ///< Goal reached (all steps) without a fall.
-  bool fell = false;         ///< Ended by a fall, excessive force or instability.
-  int success_step = -1;     ///< First control step at which success held (−1: never).
+  bool fell = false;         ///< Ended by a fall or a simulation blow-up.
+  bool force_end = false;    ///< Ended by the task's excessive-contact-force termination.
+  int success_step = -1;     ///< First control step at which the task completed (−1: never).
   double contact_error = 0;  ///< Skill goal error at the end of the trial (m).
   int steps_completed = 0;   ///< Plan steps passed (single-step skills: 1 on success).
   int num_steps = 1;         ///< Plan steps of the trial.
@@ -57,6 +58,7 @@ struct PolicyEvalReport {
   double control_dt = 1.0 / 30.0;    ///< Seconds per control step.
   double success_rate = 0;           ///< Fraction of successful trials.
   double fall_rate = 0;              ///< Fraction of trials that ended by a fall.
+  double force_end_rate = 0;         ///< Fraction ended by excessive contact force.
   double contact_error = 0;          ///< Mean final goal error (m).
   double success_steps = 0;          ///< Mean plan steps passed per trial.
   double mean_num_steps = 1;         ///< Mean plan steps per trial.

@@ -28,6 +28,9 @@ class SimVecEnv : public VecEnv {
   const uint8_t* dones() const override { return env_->dones(); }
   const uint8_t* terminated() const override { return env_->terminated(); }
   const uint8_t* successes() const override { return env_->successes(); }
+  const uint8_t* completions() const override { return env_->completions(); }
+  const sim::EndReason* end_reasons() const override { return env_->end_reasons(); }
+  const uint8_t* reference_starts() const override { return env_->reference_starts(); }
   const float* amp_observations() const override { return env_->amp_observations(); }
   const int* style_ids() const override;
   std::vector<float> initial_action_mean() const override;

@@ -24,8 +24,12 @@ struct IterationStats {
   double episode_return = 0;       ///< Mean combined return of episodes ended this iteration.
   double episode_length = 0;       ///< Mean length (steps) of those episodes.
   int64_t episodes = 0;            ///< Episodes ended this iteration.
-  double success_rate = 0;         ///< Fraction of those episodes in which success held.
-  double fall_rate = 0;            ///< Fraction of those episodes that ended by failure.
+  double success_rate = 0;         ///< Fraction of those episodes the task completed.
+  double fall_rate = 0;            ///< Fraction of those episodes that ended by a fall/blow-up.
+  double force_end_rate = 0;       ///< Fraction the task terminated (e.g. contact force).
+  double reference_start_share = 0;   ///< Fraction that began from a reference state.
+  double success_rate_reference = 0;  ///< success_rate of reference-start episodes (NaN: none).
+  double success_rate_default = 0;    ///< success_rate of default-start episodes (NaN: none).
   double actor_loss = 0;           ///< Mean clipped surrogate loss.
   double critic_loss = 0;          ///< Mean value loss.
   double bounds_loss = 0;          ///< Mean bounds loss.

@@ -45,6 +45,14 @@ class VecEnv {
   virtual const uint8_t* terminated() const = 0;
   /// Task success at this step [num_envs].
   virtual const uint8_t* successes() const = 0;
+  /// Task accomplished at this step (success held as long as required) [num_envs]; what the
+  /// log's success rate counts. Default: successes().
+  virtual const uint8_t* completions() const { return successes(); }
+  /// Why each episode ended at this step [num_envs], or nullptr (then a termination counts as
+  /// a fall).
+  virtual const sim::EndReason* end_reasons() const { return nullptr; }
+  /// 1 where this step's episode began from a reference state [num_envs], or nullptr (none).
+  virtual const uint8_t* reference_starts() const { return nullptr; }
   /// AMP observations of this transition [num_envs, amp_obs_dim()].
   virtual const float* amp_observations() const = 0;
   /// Action the untrained policy should output on average (empty = zeros). For the humanoid

@@ -112,6 +112,12 @@ struct FurnitureSpec {
 /// Generates a walk; `meta` labels are copied (synthetic flags and params are added).
 MotionClip GenerateWalk(const WalkSpec& spec, const MotionMeta& meta, double fps = 30.0);
 
+/// `lead` placed so that its last frame stands where `clip`'s first frame does (xy and
+/// heading; heights unchanged), followed by `clip` whose first `blend_seconds` crossfade from
+/// that last frame. `clip`'s frames keep their coordinates, so its metadata (furniture
+/// parameters, targets) still holds; the result takes `clip`'s metadata.
+MotionClip ComposeAfter(const MotionClip& lead, const MotionClip& clip, double blend_seconds);
+
 /// Generator settings (apps/make_synthetic_motions).
 struct SyntheticOptions {
   uint64_t seed = 1;                ///< Seed of every random choice.

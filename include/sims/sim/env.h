@@ -65,6 +65,16 @@ struct EnvStats {
   int64_t instabilities = 0;  ///< NaN / blow-up resets.
 };
 
+/// Why an env's episode ended at a step (kNone: it goes on).
+enum class EndReason : uint8_t {
+  kNone = 0,       ///< Still running.
+  kFall,           ///< Early termination: a body other than the allowed ones fell too low.
+  kTimeout,        ///< Episode length reached (bootstrap).
+  kTaskTerminate,  ///< The task ended it as a failure (e.g. excessive contact force).
+  kTaskTruncate,   ///< The task ended it without failure (e.g. success held).
+  kUnstable,       ///< The simulation blew up; the env was reset.
+};
+
 /// The batched humanoid environment.
 class BatchedEnv {
  public:
@@ -106,6 +116,12 @@ class BatchedEnv {
   const uint8_t* terminated() const { return terminated_.data(); }
   /// 1 where the task's success condition held at this step [num_envs].
   const uint8_t* successes() const { return successes_.data(); }
+  /// 1 where the task reported itself accomplished at this step (TaskStepResult::completed).
+  const uint8_t* completions() const { return completions_.data(); }
+  /// Why each env's episode ended at this step (EndReason, kNone where it goes on).
+  const EndReason* end_reasons() const { return end_reason_.data(); }
+  /// 1 where this step's episode began from a reference (motion clip) state [num_envs].
+  const uint8_t* reference_starts() const { return episode_reference_.data(); }
   /// AMP observations of this step's transition, before any reset [num_envs, amp_obs_dim()],
   /// ordered [t, t−1, …].
   const float* amp_observations() const { return amp_obs_.data(); }
@@ -155,9 +171,9 @@ class BatchedEnv {
   uint32_t contact_mask_ = 0;
   std::vector<std::unique_ptr<Slot>> slots_;
   std::vector<float> obs_, terminal_obs_, rewards_, amp_obs_;
-  std::vector<uint8_t> dones_, terminated_, successes_;
+  std::vector<uint8_t> dones_, terminated_, successes_, completions_, episode_reference_;
   // Per-env end reasons from the parallel loop, summed serially afterwards.
-  std::vector<uint8_t> end_reason_;
+  std::vector<EndReason> end_reason_;
   EnvStats stats_;
 };
 

@@ -35,6 +35,9 @@ struct InitialState {
 struct TaskStepResult {
   float reward = 0.0f;     ///< Task reward r_task.
   bool success = false;    ///< Success condition holds at this step.
+  /// The task is accomplished: success has held as long as the skill requires (the figure
+  /// training logs and evaluation count as a successful episode).
+  bool completed = false;
   bool terminate = false;  ///< End the episode as a failure (no bootstrap).
   bool truncate = false;   ///< End the episode without failure (bootstrap), e.g. success held.
 };

@@ -1,10 +1,11 @@
 // Rewards and success rules shared by the contact skills.
 //
-// Contact skills (sit, lie, reach; SIMS supplementary):
-//   d² = ‖x* − x_root‖² (xy), x* the anchor the character walks to
-//   far (d² > 0.5): r = 0.6·r_near + 0.4·r_far;   near: r = 0.6·r_near + 0.4
-//   r_far  = 0.5·exp(−0.5·d²) + 0.4·exp(−2·(v* − d*·ẋ)²) + 0.1·(d*·d_facing)²
-//   r_near = exp(−10·Σ_j ‖g_j − x_j‖²), g_j the nearest point of joint j's goal part.
+// Object skills (sit, lie, reach, get-up; InterScene/TokenHSI's near/far split):
+//   r = 0.7·r_near + 0.3·r_far
+//   r_near = exp(−10·Σ_j ‖g_j − x_j‖²) over the skill's goal joints (fixed, object-local goals)
+//   r_far  = 1 within √0.5 m (xy) of the anchor x* (a stand point in front of the object), else
+//            0.5·exp(−0.5·d²) + 0.4·r_speed + 0.1·max(0, d̂·facing),
+//            r_speed = exp(−2·(v* − d̂·ẋ)²) when moving towards x* (d̂·ẋ > 0), 0 otherwise.
 //
 // UniHSI contact pairs (the UniHSI paper, its unified controller): per joint a contact term
 // r_c = exp(−10·d²) (contact) or 1 − exp(−10·d²) (not contact) and a direction term
@@ -29,11 +30,19 @@ namespace sims::task {
 /// Squared xy distance beyond which the contact reward is in its "far" form (m²).
 inline constexpr double kFarDistanceSq = 0.5;
 
-/// The contact-skill reward for one state (see the file comment). `contact_sq_sum` is
+/// Weight of r_near in ContactReward (InterScene, TokenHSI).
+inline constexpr double kNearWeight = 0.7;
+
+/// The object-skill reward for one state (see the file comment). `contact_sq_sum` is
 /// Σ_j ‖g_j − x_j‖² over the skill's goal joints; `facing` is the unit heading direction.
 double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
                      const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
                      double target_speed, double contact_sq_sum);
+
+/// r_far of ContactReward: 1 within √kFarDistanceSq of `anchor`, else the approach terms.
+double FarReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
+                 const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
+                 double target_speed);
 
 /// What a UniHSI pair asks of a joint.
 enum class ContactType : int {

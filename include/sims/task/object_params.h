@@ -16,7 +16,13 @@ struct ObjectParams {
   bool held_out_objects = false;               ///< Held-out dimension ranges (evaluation).
   double spawn_min_distance = 1.0;             ///< Character spawn distance from the object (m).
   double spawn_max_distance = 4.0;             ///< ... (m).
-  double contact_success_threshold = 0.2;      ///< Sit/reach 0.20 m, lie 0.30 m.
+  double spawn_arc_deg = 360;  ///< Default starts within ±arc/2 of the object's front (deg).
+  /// Default starts widen from spawn_min_distance to spawn_max_distance as each env succeeds:
+  /// its level rises by spawn_curriculum_step after a completed default-start episode and falls
+  /// by half that after a failed one (evaluation turns it off: full range).
+  bool spawn_curriculum = false;
+  double spawn_curriculum_step = 0.1;      ///< Level change per episode (level in [0, 1]).
+  double contact_success_threshold = 0.2;  ///< Sit/reach 0.20 m, lie 0.30 m.
   double max_contact_force = 1e4;  ///< Net contact force (N) that ends an episode (0 = off).
 
   /// Lists the fields for JSON binding (keys as in the skill config).
@@ -27,6 +33,9 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(held_out_objects));
     a->Visit(SIMS_NVP(spawn_min_distance));
     a->Visit(SIMS_NVP(spawn_max_distance));
+    a->Visit(SIMS_NVP(spawn_arc_deg));
+    a->Visit(SIMS_NVP(spawn_curriculum));
+    a->Visit(SIMS_NVP(spawn_curriculum_step));
     a->Visit(SIMS_NVP(contact_success_threshold));
     a->Visit(SIMS_NVP(max_contact_force));
   }

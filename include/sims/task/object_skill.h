@@ -3,9 +3,16 @@
 // ground": `num_objects` procedural pieces of the skill's categories (random dimensions, or
 // disjoint held-out ranges for evaluation) placed far apart on a grid with random yaw. At each
 // reset an env picks one object and the character starts either from a motion clip placed
-// consistently with that object (the clip's stored seat/bed/target parameters) or standing
-// at a random heading and distance around it. Other envs may use the same object at the same
-// time: every env has its own mjData.
+// consistently with that object (the clip's stored seat/bed/target parameters), at a time
+// before the clip reaches the task's contact, or standing at a random heading and distance
+// around it (a per-env curriculum can widen that distance as the env succeeds). Other envs may
+// use the same object at the same time: every env has its own mjData.
+//
+// As InterScene and TokenHSI do, each episode has a fixed world target (the pelvis point on a
+// seat, the hand point on a shelf) and a far anchor (a stand point in front of the object) that
+// the approach reward leads to; skills that observe the object add a 29-value "task" segment in
+// the pelvis heading frame: target − pelvis (3), the object's 8 box corners − pelvis (24) and
+// the object's facing (+x) direction (2).
 #pragma once
 
 #include <string>
@@ -21,6 +28,15 @@ namespace sims::task {
 inline constexpr double kTrainingGroundSpacing = 12.0;
 /// Seat/bed heights of a clip and an object may differ this much for reference init (m).
 inline constexpr double kMaxClipHeightMismatch = 0.05;
+/// Width of the object observation (target 3, box corners 24, facing 2).
+inline constexpr int kObjectObsDim = 29;
+/// Gap between an object's footprint and a stand point in front of it (m).
+inline constexpr double kStandDistance = 0.45;
+/// A clip is "in contact" once its success distance is below this multiple of the success
+/// threshold; reference starts stay before that.
+inline constexpr double kPreContactMargin = 1.5;
+/// Clips with less than this much motion before contact (s) start no episodes (idle clips).
+inline constexpr double kMinPreContactTime = 0.3;
 
 /// Builds a training ground: `config.object.num_objects` (≥ 1) pieces cycling through
 /// `config.object.object_categories` (or `default_categories` when empty) with random dimensions
@@ -85,6 +101,8 @@ class ObjectSkill : public Skill {
   ObjectSkill(const SkillConfig& config, const SkillContext& context);
 
   void SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) override;
+  int task_obs_dim() const override { return observes_object() ? kObjectObsDim : 0; }
+  void ObserveTask(const sim::EnvView& view, float* out) const override;
   /// Pursues scene object target.object (or, without one, the accepted object nearest the
   /// pelvis) from the current state: selects it, draws the task deterministically and sets
   /// the goals as a reset would, without moving the character.
@@ -107,12 +125,37 @@ class ObjectSkill : public Skill {
   double goal_error(const sim::EnvView& view) const override { return error_[view.env_id]; }
   /// Consecutive steps the success condition has held.
   int hold(int env_id) const { return hold_[env_id]; }
+  /// Env i's fixed episode target (world): where the pelvis or hand should end.
+  const Eigen::Vector3d& target(int env_id) const { return target_W_[env_id]; }
+  /// Env i's far anchor (world xy): the stand point the approach reward leads to.
+  const Eigen::Vector2d& anchor(int env_id) const { return anchor_W_[env_id]; }
+  /// Env i's spawn-curriculum level in [0, 1] (1 = the full spawn distance range).
+  double spawn_level(int env_id) const { return level_[env_id]; }
+  /// Sets env i's spawn level (tests, tools).
+  void SetSpawnLevel(int env_id, double level);
+  /// Whether env i's episode began from a reference (clip) state.
+  bool reference_start(int env_id) const { return reference_[env_id] != 0; }
+  /// Latest start time (s) of reference starts from library clip `clip` (−1: not used).
+  double pre_contact_time(int clip) const;
   /// Net contact force on the humanoid (N) after the last physics step of `view`.
   static double ContactForce(const sim::EnvView& view);
 
  protected:
   /// Whether scene object `g` suits the skill.
   virtual bool Accepts(const ObjectGeometry& g) const = 0;
+  /// Whether the policy observes the object (the "task" segment).
+  virtual bool observes_object() const { return false; }
+  /// First time (s) at which clip `clip` (in its own frame) meets the task's contact, for the
+  /// pre-contact reference window; default: never (the whole clip).
+  virtual double ClipContactTime(int clip) const;
+  /// Measures ClipContactTime for the reference clips and keeps those with at least
+  /// kMinPreContactTime before contact; derived constructors call it once their clips are set.
+  void PrepareReferenceClips();
+  /// Fixes env i's episode target and far anchor (world).
+  void SetEpisodeTarget(int env_id, const Eigen::Vector3d& target_W,
+                        const Eigen::Vector2d& anchor_W);
+  /// A reference time of clip `clip` before its contact (and within the max fraction).
+  double PreContactTime(int clip, Rng& rng) const;
   /// Fills objects() with the accepted scene objects (of config.object.object_categories when set);
   /// derived constructors call it last. Throws sims::Error naming the scene when none fits.
   void CollectObjects(const std::string& what);
@@ -132,31 +175,40 @@ class ObjectSkill : public Skill {
   std::vector<double> SaveSkillState(int env_id) const final;
   void LoadSkillState(int env_id, const double* data, size_t size) final;
 
-  /// A free floor point spawn_min..spawn_max beyond object g's footprint.
-  Eigen::Vector2d SpawnPoint(const ObjectGeometry& g, Rng& rng) const;
+  /// A free floor point beyond object g's footprint, within the spawn arc and env i's
+  /// curriculum range of spawn distances.
+  Eigen::Vector2d SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const;
   /// True when the floor disk of `radius` around p is free (height grid).
   bool FreeFloor(const Eigen::Vector2d& p, double radius) const;
   /// Fills `init` from clip `clip` at time t placed by `placement` (pose + AMP history).
   void PlaceReference(int env_id, int clip, double t, const ClipPlacement& placement,
                       sim::InitialState* init);
   /// Seat/bed clips of `skills` whose furniture fits object g, for reference init: returns
-  /// a clip index (−1 if none) and its placement (random lateral offset on wide seats).
-  int ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g, Rng& rng,
-                          ClipPlacement* placement) const;
-  /// Reference init from `reference_clips_` placed on env i's furniture (sit, lie).
-  bool FurnitureClipInit(int env_id, Rng& rng, sim::InitialState* init);
-  /// Contact reward towards `anchor_local` (object frame) with Σ‖g_j − x_j‖² = goal_sum, and
-  /// success when the measured distance d is within the threshold.
-  sim::TaskStepResult ContactRewardStep(const sim::EnvView& view,
-                                        const Eigen::Vector3d& anchor_local, double goal_sum,
-                                        double d);
+  /// a clip index (−1 if none) and its placement (`lateral` m along a wide seat).
+  int ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g, double lateral,
+                          Rng& rng, ClipPlacement* placement) const;
+  /// Reference init from `reference_clips_` placed on env i's furniture (sit, lie) at
+  /// `lateral` m along the seat.
+  bool FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::InitialState* init);
+  /// Contact reward towards the env's far anchor with Σ‖g_j − x_j‖² = goal_sum, and success
+  /// when the measured distance d is within the threshold.
+  sim::TaskStepResult ContactRewardStep(const sim::EnvView& view, double goal_sum, double d);
   /// Ends a step: success counter, success-held truncation, excessive-force termination.
   sim::TaskStepResult Finish(const sim::EnvView& view, double reward, bool success);
 
   std::vector<ObjectGeometry> objects_;
   std::vector<int> object_, hold_, override_;
   std::vector<double> error_;
+  std::vector<Eigen::Vector3d> target_W_;
+  std::vector<Eigen::Vector2d> anchor_W_;
+  std::vector<double> level_;                  // spawn-curriculum level
+  std::vector<uint8_t> started_, reference_;  // an episode ran; it began from a clip
+  std::vector<double> pre_contact_;           // per library clip (−1: not a reference clip)
 };
+
+/// A random position (m) along a wide seat (sofas) so envs do not all use the middle; 0 for
+/// seats with room for one and objects without a seat.
+double SeatLateral(const ObjectGeometry& g, Rng& rng);
 
 /// Heading direction (unit, xy) of a pose.
 Eigen::Vector2d FacingOf(const sim::HumanoidPose& pose);

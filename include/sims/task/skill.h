@@ -1,6 +1,7 @@
 // Skills are environment task hooks with a shared observation layout, so any skill's policy
 // reads the same kinds of inputs:
 //   [contact goal: 15 joints × (heading-local target − joint position, valid mask) = 60]
+//   [the skill's own task values, task_obs_dim() (object skills: target, box corners, facing)]
 //   [egocentric heightmap: H·W heights relative to the root]
 //   [style embedding z: 64, zero when the skill is not text-conditioned]
 // A skill fills per-env goals; the base class turns them into observations, handles the
@@ -151,6 +152,10 @@ class Skill : public sim::TaskHook {
   /// The distance (m) env view.env_id's success test compares with its threshold, for
   /// evaluation and story metrics; 0 for a skill without one.
   virtual double goal_error(const sim::EnvView& view) const;
+  /// Width of the skill's own observation segment "task" after the contact goals (0: none).
+  virtual int task_obs_dim() const { return 0; }
+  /// Writes task_obs_dim() values for env view.env_id.
+  virtual void ObserveTask(const sim::EnvView& view, float* out) const;
   /// The configuration.
   const SkillConfig& config() const { return config_; }
   /// The context.

@@ -1,11 +1,15 @@
 // The code sit and lie share: put the pelvis on one furniture part (a seat surface, a mattress)
 // and optionally one more contact joint on the nearest of some other parts (the torso on the
-// back rest, the head on a pillow). Contact reward (contact_reward.h) with the anchor x* at the
-// centre of the pelvis part and g_j the surface point of the goal part nearest to joint j;
-// success when the pelvis (and the extra joint, where it counts) is within
-// contact_success_threshold of its part; the episode ends without failure once success has
-// held for success_hold_steps. Reference init places the skill's clips on the env's furniture
-// by the clips' stored furniture parameters (ObjectSkill::FurnitureClipInit).
+// back rest, the head on a pillow). Each episode fixes an object-local pelvis target (sit: the
+// seat top behind its front edge, raised by the seated pelvis height; at a random place along
+// wide seats) and a far anchor in front of the object, so the target never moves with the
+// character nor points through a back rest. Contact reward (contact_reward.h) with g_pelvis the
+// target and the extra joint's goal the nearest point of its parts; success when the pelvis
+// (and the extra joint, where it counts) is within contact_success_threshold; the episode
+// ends without failure once success has held for success_hold_steps. Reference init places
+// the skill's clips on the env's furniture by their stored furniture parameters, at a time
+// before the clip reaches the seat (ObjectSkill::FurnitureClipInit); the policy observes the
+// object (ObjectSkill's "task" segment).
 #pragma once
 
 #include <string>
@@ -20,8 +24,14 @@ struct SurfaceTask {
   std::string clip_skill;            ///< Motion clips of this label feed reference init.
   std::string what;                  ///< The object it needs, for "no suitable object" errors.
   int ObjectGeometry::*pelvis_part;  ///< The part the pelvis goes on (seat, mattress).
-  scene::Aabb ObjectGeometry::*pelvis_bounds;  ///< That part's bounds (the reward's anchor).
-  int extra_joint = -1;                        ///< A second contact joint (−1 = none).
+  /// The episode's lateral choice on object g (e.g. SeatLateral; null = always 0).
+  double (*lateral)(const ObjectGeometry& g, Rng& rng) = nullptr;
+  /// The pelvis target in the object frame for that choice.
+  Eigen::Vector3d (*target_local)(const ObjectGeometry& g, double lateral,
+                                  const SkillConfig& c) = nullptr;
+  /// The far anchor (a floor point in front of the object) in the object frame.
+  Eigen::Vector3d (*anchor_local)(const ObjectGeometry& g, double lateral) = nullptr;
+  int extra_joint = -1;  ///< A second contact joint (−1 = none).
   /// The parts of object g the extra joint may touch (nearest wins; none = no goal).
   std::vector<int> (*extra_parts)(const ObjectGeometry& g, const SkillConfig& c) = nullptr;
   bool extra_in_success = false;  ///< The extra joint's distance counts for success.
@@ -36,19 +46,25 @@ class SurfaceSkill : public ObjectSkill {
   void OnReset(const sim::EnvView& view, Rng& rng) override;
   sim::TaskStepResult Step(const sim::EnvView& view) override;
 
-  /// Where env i's pelvis should go: the pelvis part's point nearest to `pelvis` (world).
-  Eigen::Vector3d PelvisTarget(int env_id, const Eigen::Vector3d& pelvis) const;
   /// Updates env i's goals for body states `b`; returns Σ‖g_j − x_j‖² and sets the distance
   /// the success test compares (the pelvis's, or the larger of both joints').
   double UpdateGoals(int env_id, const sim::BodyStates& b, double* success_distance);
+  /// Env i's lateral choice (m along the seat; lie: the side, ±1).
+  double lateral(int env_id) const { return lateral_[env_id]; }
 
  protected:
   bool Accepts(const ObjectGeometry& g) const override { return g.*task_.pelvis_part >= 0; }
+  bool observes_object() const override { return true; }
+  double ClipContactTime(int clip) const override;
+  void SampleTask(int env_id, Rng& rng) override;
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
+  void SaveTaskState(int env_id, std::vector<double>* out) const override;
+  size_t LoadTaskState(int env_id, const double* data, size_t size) override;
 
  private:
   SurfaceTask task_;
   std::vector<std::vector<int>> extra_parts_;  // per object slot, fixed by the config
+  std::vector<double> lateral_;
 };
 
 }  // namespace sims::task

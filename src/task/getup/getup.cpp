@@ -105,7 +105,8 @@ Eigen::Vector3d GetUpSkill::FootTarget(const Eigen::Vector2d& stand,
 bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   fall_start_[i] = 0;
   ClipPlacement placement;
-  const int clip = ChooseFurnitureClip(reference_clips_, geometry(i), rng, &placement);
+  const double lateral = SeatLateral(geometry(i), rng);
+  const int clip = ChooseFurnitureClip(reference_clips_, geometry(i), lateral, rng, &placement);
   if (clip < 0) return false;
   const auto& c = context_.motions->clip(clip);
   double t = 0;
@@ -128,7 +129,7 @@ void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
   fall_start_[i] = 1;
   const int k = static_cast<int>(rng.UniformInt(static_cast<int64_t>(fall_states_.size())));
   ClipPlacement placement;
-  placement.offset = SpawnPoint(geometry(i), rng);
+  placement.offset = SpawnPoint(i, geometry(i), rng);
   placement.yaw = rng.Uniform(-M_PI, M_PI);
   init->pose = placement.Apply(fall_states_[k]);
   init->history.clear();

@@ -5,12 +5,26 @@
 namespace sims::task {
 
 namespace {
+// Height of the lying pelvis above the mattress top in the lie clips (m).
+constexpr double kLyingPelvisHeight = 0.11;
+
 SurfaceTask LieTask() {
   SurfaceTask t;
   t.clip_skill = "lie";
   t.what = "bed (an object with a 'mattress' part)";
   t.pelvis_part = &ObjectGeometry::mattress;
-  t.pelvis_bounds = &ObjectGeometry::mattress_local;
+  // The side of the bed the character lies down from (the clips come in mirrored pairs).
+  t.lateral = [](const ObjectGeometry&, Rng& rng) { return rng.Bernoulli(0.5) ? 1.0 : -1.0; };
+  // The mattress centre, the lying pelvis height (the lie clips: 0.11 m) above its top.
+  t.target_local = [](const ObjectGeometry& g, double, const SkillConfig&) {
+    const Eigen::Vector3d mid = g.mattress_local.center();
+    return Eigen::Vector3d(mid.x(), mid.y(), g.mattress_local.max.z() + kLyingPelvisHeight);
+  };
+  // A stand point beside the bed's long side (a procedural bed's long axis is its x).
+  t.anchor_local = [](const ObjectGeometry& g, double side) {
+    const double y = side > 0 ? g.local.max.y() + kStandDistance : g.local.min.y() - kStandDistance;
+    return Eigen::Vector3d(g.mattress_local.center().x(), y, 0.0);
+  };
   t.extra_joint = sim::kCjHead;
   t.extra_parts = [](const ObjectGeometry& g, const SkillConfig&) { return g.pillows; };
   t.extra_in_success = true;  // lying means the head is on the pillow too

@@ -4,6 +4,7 @@
 
 #include "sims/core/error.h"
 #include "sims/sim/features.h"
+#include "sims/sim/model_builder.h"
 
 namespace sims::task {
 
@@ -23,7 +24,7 @@ ReachSkill::ReachSkill(const SkillConfig& config, const SkillContext& context)
     : ObjectSkill(config, context) {
   reference_clips_.clear();
   if (context.motions) reference_clips_ = context.motions->Find("reach");
-  target_.assign(context.num_envs, Eigen::Vector3d::Zero());
+  PrepareReferenceClips();
   hand_.assign(context.num_envs, sim::kCjRightHand);
   CollectObjects("object with front surfaces between 0.25 and 1.95 m");
   for (const auto& g : objects_) candidates_.push_back(FrontPoints(g));
@@ -49,10 +50,34 @@ bool ReachSkill::Accepts(const ObjectGeometry& g) const {
   return !b[0].empty() || !b[1].empty() || !b[2].empty();
 }
 
+double ReachSkill::ClipContactTime(int clip) const {
+  // The first frame at which the clip's hand is within the success distance (with margin)
+  // of the clip's stored target.
+  const motion::MotionClip& c = context_.motions->clip(clip);
+  const auto& prm = c.meta().params;
+  if (!prm.count("target_x") || !prm.count("target_y") || !prm.count("target_z"))
+    return c.duration();
+  const Eigen::Vector3d goal(prm.at("target_x"), prm.at("target_y"), prm.at("target_z"));
+  const int hand = prm.at("target_y") > 0 ? sim::kCjLeftHand : sim::kCjRightHand;
+  const double reach = kPreContactMargin * config_.object.contact_success_threshold;
+  sim::MjDataPtr scratch = sim::MakeData(context_.humanoid->model());
+  sim::BodyStates b;
+  for (int f = 0; f < c.num_frames(); ++f) {
+    sim::ForwardKinematics(*context_.humanoid, c.FramePose(f), scratch.get(), &b);
+    if ((sim::ContactJointPosition(b, hand) - goal).norm() < reach) return f / c.fps();
+  }
+  return c.duration();
+}
+
 void ReachSkill::SetTarget(int i, int hand_joint, const Eigen::Vector3d& target) {
   SIMS_CHECK(hand_joint == sim::kCjLeftHand || hand_joint == sim::kCjRightHand);
   hand_[i] = hand_joint;
-  target_[i] = target;
+  // The far anchor: in front of the object's front face, level with the target.
+  const ObjectGeometry& g = geometry(i);
+  const Eigen::Vector3d l = g.X_WO.inverse() * target;
+  const Eigen::Vector3d anchor = g.ToWorld(Eigen::Vector3d(g.local.max.x() + kStandDistance,
+                                                           l.y(), 0.0));
+  SetEpisodeTarget(i, target, anchor.head<2>());
   hold_[i] = 0;
   ClearGoals(i);
   SetGoal(i, hand_joint, target);
@@ -97,7 +122,7 @@ bool ReachSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
     const auto& prm = lib->clip(c).meta().params;
     if (!prm.count("target_x") || !prm.count("target_y") || !prm.count("target_z")) continue;
     if ((prm.at("target_y") > 0) != left) continue;
-    if (std::abs(prm.at("target_z") - target_[i].z()) > kClipTargetTolerance) continue;
+    if (std::abs(prm.at("target_z") - target(i).z()) > kClipTargetTolerance) continue;
     fitting.push_back(c);
   }
   if (fitting.empty()) return false;
@@ -107,39 +132,32 @@ bool ReachSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   // front (object −x) with the clip target on the chosen point.
   const ObjectGeometry& g = geometry(i);
   const ClipPlacement placement =
-      ClipPlacement::Align(target_[i].head<2>(), g.yaw + M_PI,
+      ClipPlacement::Align(target(i).head<2>(), g.yaw + M_PI,
                            Eigen::Vector2d(prm.at("target_x"), prm.at("target_y")), 0.0);
   if (!FreeFloor(placement.offset, 0.2)) return false;
-  const double t = lib->SampleTime(clip, rng, config_.reference_init_max_fraction);
-  PlaceReference(i, clip, t, placement, init);
+  PlaceReference(i, clip, PreContactTime(clip, rng), placement, init);
   return true;
 }
 
 void ReachSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
-  error_[i] = (target_[i] - sim::ContactJointPosition(*view.bodies, hand_[i])).norm();
+  error_[i] = (target(i) - sim::ContactJointPosition(*view.bodies, hand_[i])).norm();
 }
 
 sim::TaskStepResult ReachSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
-  const double d2 = (target_[i] - sim::ContactJointPosition(*view.bodies, hand_[i])).squaredNorm();
-  error_[i] = std::sqrt(d2);
-  const double r = ContactReward(target_[i].head<2>(), view.pose->root_pos.head<2>(),
-                                 view.pose->root_lin_vel.head<2>(), FacingOf(*view.pose),
-                                 config_.target_speed, d2);
-  return Finish(view, r, error_[i] < config_.object.contact_success_threshold);
+  const double d2 = (target(i) - sim::ContactJointPosition(*view.bodies, hand_[i])).squaredNorm();
+  return ContactRewardStep(view, d2, std::sqrt(d2));
 }
 
 void ReachSkill::SaveTaskState(int i, std::vector<double>* out) const {
-  out->insert(out->end(),
-              {static_cast<double>(hand_[i]), target_[i].x(), target_[i].y(), target_[i].z()});
+  out->push_back(static_cast<double>(hand_[i]));
 }
 
 size_t ReachSkill::LoadTaskState(int i, const double* d, size_t size) {
-  if (size < 4) return 0;
+  if (size < 1) return 0;
   hand_[i] = static_cast<int>(d[0]);
-  target_[i] = Eigen::Vector3d(d[1], d[2], d[3]);
-  return 4;
+  return 1;
 }
 
 SkillInfo ReachSkillInfo() {

@@ -250,6 +250,7 @@ sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
       pairs = ResolveStep(steps_[i][step_[i]], *context_.scene, b);
     } else {
       r.truncate = true;
+      r.completed = true;  // the whole chain passed
     }
   } else if (check.triggered) {
     r.truncate = true;  // done without passing: UniHSI restarts the chain

@@ -105,10 +105,12 @@ double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& r
   const double r_near = std::exp(-10.0 * d2);
   if (d2 > 0.5) {
     const Eigen::Vector2d dir = delta / std::sqrt(d2);
-    const double speed_err = target_speed - dir.dot(velocity);
-    const double facing_dot = dir.dot(facing);
-    const double r_far = 0.6 * std::exp(-0.5 * d2) + 0.2 * std::exp(-2.0 * speed_err * speed_err) +
-                         0.2 * facing_dot * facing_dot;
+    // Moving or facing away earns nothing (a squared cosine would pay facing away too).
+    const double v = dir.dot(velocity);
+    const double speed_err = target_speed - v;
+    const double r_speed = v > 0 ? std::exp(-2.0 * speed_err * speed_err) : 0.0;
+    const double r_far = 0.6 * std::exp(-0.5 * d2) + 0.2 * r_speed +
+                         0.2 * std::max(0.0, dir.dot(facing));
     return 0.4 * r_near + 0.5 * r_far;
   }
   const double r_still = std::exp(-2.0 * (velocity - prev_velocity).squaredNorm());
@@ -128,7 +130,8 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   prev_velocity_[i] = vel;
   r.success = (target_[i] - root).norm() < config_.walk.success_radius;
   hold_[i] = r.success ? hold_[i] + 1 : 0;
-  if (hold_[i] >= config_.success_hold_steps && config_.walk.resample_target_on_success)
+  r.completed = hold_[i] >= config_.success_hold_steps;
+  if (r.completed && config_.walk.resample_target_on_success)
     SetTarget(i, SampleTarget(root, target_rng_[i]));
   return r;
 }

@@ -1,11 +1,13 @@
 // Reach: the left or right hand to a point on a part of an object (table, desk, cabinet,
-// shelf, wardrobe) at a low, medium or high height. Contact reward (see
-// contact_reward.h) with the anchor x* and the hand's goal g both at the target point;
-// success when the hand is within contact_success_threshold (0.20 m); the episode ends
-// without failure once success has held for success_hold_steps. Targets are surface samples
-// on the object's front (its +x side) in one of three height bands; reference init places a
-// reach clip of the same hand whose stored target height matches so that its target lands on
-// the point, the character facing the object.
+// shelf, wardrobe) at a low, medium or high height. Contact reward (see contact_reward.h)
+// with the hand's goal g at the target point and the far anchor x* a stand point in front of
+// it (kStandDistance off the object's front face), so the approach comes from the front;
+// success when the hand is within contact_success_threshold; the episode ends without failure
+// once success has held for success_hold_steps. Targets are surface samples on the object's
+// front (its +x side) in one of three height bands; reference init places a reach clip of the
+// same hand whose stored target height matches so that its target lands on the point, the
+// character facing the object, at a time before the hand arrives. The policy observes the
+// object (ObjectSkill's "task" segment).
 #pragma once
 
 #include <array>
@@ -33,8 +35,6 @@ class ReachSkill : public ObjectSkill {
   /// target: the candidate of that band nearest the character.
   bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
 
-  /// Env i's target point (world).
-  const Eigen::Vector3d& target(int env_id) const { return target_[env_id]; }
   /// Env i's reaching contact joint (sim::kCjLeftHand or sim::kCjRightHand).
   int hand(int env_id) const { return hand_[env_id]; }
   /// Sets env i's hand and target (FSM / eval; resets the success counter).
@@ -46,6 +46,8 @@ class ReachSkill : public ObjectSkill {
 
  protected:
   bool Accepts(const ObjectGeometry& g) const override;
+  bool observes_object() const override { return true; }
+  double ClipContactTime(int clip) const override;
   void SampleTask(int env_id, Rng& rng) override;
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
   void SaveTaskState(int env_id, std::vector<double>* out) const override;
@@ -55,7 +57,6 @@ class ReachSkill : public ObjectSkill {
   using Bands = std::array<std::vector<Eigen::Vector3d>, 3>;
   Bands FrontPoints(const ObjectGeometry& g) const;
   std::vector<Bands> candidates_;
-  std::vector<Eigen::Vector3d> target_;
   std::vector<int> hand_;
 };
 

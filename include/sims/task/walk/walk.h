@@ -5,7 +5,7 @@
 //   d² = ‖x* − x_root‖² (xy)
 //   far (d² > 0.5):  r = 0.4·r_near + 0.5·r_far
 //   near:            r = 0.4·r_near + 0.5 + 0.1·r_still
-//   r_far  = 0.6·exp(−0.5·d²) + 0.2·exp(−2·(v* − d*·ẋ)²) + 0.2·(d*·d_facing)²
+//   r_far  = 0.6·exp(−0.5·d²) + 0.2·exp(−2·(v* − d*·ẋ)²)·[d*·ẋ > 0] + 0.2·max(0, d*·d_facing)
 //   r_near = exp(−10·d²),  r_still = exp(−2·‖ẋ_t − ẋ_{t−1}‖²)
 // with d* the unit direction to the target, ẋ the root's horizontal velocity and d_facing the
 // heading direction. Success: within walk_success_radius; after success has held for
