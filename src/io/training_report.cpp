@@ -245,6 +245,8 @@ std::vector<ReportPlot> DefaultTrainingPlots() {
        {"success_rate_reference", "success_rate_default"}},
       {"Discriminator accuracy", {"disc_acc_demo", "disc_acc_agent"}},
       {"Throughput (samples/s)", {"env_samples_per_s", "train_samples_per_s"}},
+      {"PPO step size (clip fraction, KL)", {"clip_fraction", "kl"}},
+      {"Learning rate", {"learning_rate"}},
       {"Episode length (steps)", {"episode_length"}},
       {"Policy losses", {"actor_loss", "bounds_loss"}},
       {"Critic loss", {"critic_loss"}},

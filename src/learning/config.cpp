@@ -27,6 +27,11 @@ void PpoConfig::Validate() const {
   Require(grad_norm >= 0, "grad_norm", "a non-negative norm (0 = no clipping)");
   Require(obs_clip > 0, "obs_clip", "a positive clip");
   Require(warm_start_obs_count > 0, "warm_start_obs_count", "a positive sample count");
+  Require(warm_start_quiet_var >= 0, "warm_start_quiet_var", "a non-negative variance");
+  Require(actor_warmup_iterations >= 0, "actor_warmup_iterations", "a non-negative count");
+  Require(lr_schedule == "constant" || lr_schedule == "adaptive", "lr_schedule",
+          "\"constant\" or \"adaptive\"");
+  Require(kl_threshold > 0, "kl_threshold", "a positive KL divergence");
 }
 
 void AmpConfig::Validate() const {

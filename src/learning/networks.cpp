@@ -84,21 +84,35 @@ int Matching(const std::vector<sim::ObsSegment>& list, const sim::ObsSegment& s)
 }
 }  // namespace
 
-std::vector<std::string> ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
-                                             const std::vector<sim::ObsSegment>& src_segments,
-                                             ActorCritic& dst, RunningMeanStd& dst_norm,
-                                             const std::vector<sim::ObsSegment>& dst_segments,
-                                             const NetworkConfig& config) {
+LayoutImport ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
+                                 const std::vector<sim::ObsSegment>& src_segments,
+                                 ActorCritic& dst, RunningMeanStd& dst_norm,
+                                 const std::vector<sim::ObsSegment>& dst_segments,
+                                 const NetworkConfig& config, double quiet_var) {
   torch::NoGradGuard guard;
+  using Kind = sim::ObsSegment::Kind;
   const auto src_cols = EncoderColumns(src_segments, config);
   const auto dst_cols = EncoderColumns(dst_segments, config);
-  std::vector<std::string> fresh;
+  LayoutImport result;
+  // Per destination segment: the matching source segment and its quiet columns (a mask over
+  // the segment's inputs, true = silence).
+  std::vector<int> match(dst_segments.size(), -1);
+  std::vector<torch::Tensor> quiet(dst_segments.size());
   for (size_t k = 0; k < dst_segments.size(); ++k) {
-    const int j = Matching(src_segments, dst_segments[k]);
-    if (j < 0) fresh.push_back(dst_segments[k].name);
-    if (j >= 0 && dst_segments[k].kind != sim::ObsSegment::Kind::kStyle)
-      dst_norm->ImportColumns(*src_norm, src_segments[j].offset, dst_segments[k].offset,
-                              dst_segments[k].size);
+    const auto& d = dst_segments[k];
+    match[k] = Matching(src_segments, d);
+    if (match[k] < 0) {
+      result.new_segments.push_back(d.name);
+      continue;
+    }
+    const auto& sseg = src_segments[match[k]];
+    quiet[k] = torch::zeros({d.size}, torch::kBool);
+    if (d.kind != Kind::kStyle && d.name != "self" && quiet_var > 0)
+      quiet[k] = src_norm->var().narrow(0, sseg.offset, d.size) < quiet_var;
+    result.silenced += quiet[k].sum().item<int64_t>();
+    if (d.kind == Kind::kStyle) continue;
+    dst_norm->ImportColumns(*src_norm, sseg.offset, d.offset, d.size);
+    dst_norm->ResetColumns(d.offset, quiet[k]);
   }
   const auto src_params = src->named_parameters();
   for (auto& item : dst->named_parameters()) {
@@ -114,31 +128,64 @@ std::vector<std::string> ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& s
         from->dim() == 2 && from->size(0) == to.size(0)) {
       to.zero_();
       for (size_t k = 0; k < dst_segments.size(); ++k) {
-        const int j = Matching(src_segments, dst_segments[k]);
-        if (j < 0) continue;
+        if (match[k] < 0) continue;
         to.narrow(1, dst_cols[k].first, dst_cols[k].second)
-            .copy_(from->narrow(1, src_cols[j].first, src_cols[j].second));
+            .copy_(from->narrow(1, src_cols[match[k]].first, src_cols[match[k]].second));
       }
       continue;
     }
     ThrowInputError("warm-start policy", name, "a parameter of the same shape (same network)",
                     from ? "another shape" : "missing");
   }
-  return fresh;
+  // Silence the quiet inputs where they are read: vector segments in the first MLP layer,
+  // heightmaps in their encoder's first layer.
+  auto params = dst->named_parameters();
+  int heightmap = 0;
+  for (size_t k = 0; k < dst_segments.size(); ++k) {
+    const auto& d = dst_segments[k];
+    const bool is_map = d.kind == Kind::kHeightmap;
+    const int map_index = is_map ? heightmap++ : -1;
+    if (match[k] < 0 || !quiet[k].defined() || !quiet[k].any().item<bool>()) continue;
+    const auto cols = torch::nonzero(quiet[k]).flatten();
+    for (const char* net : {"actor", "critic"}) {
+      const std::string name =
+          is_map ? std::string(net) + "_encoder.heightmap" + std::to_string(map_index) +
+                       ".fc0.weight"
+                 : std::string(net) + ".fc0.weight";
+      torch::Tensor* w = params.find(name);
+      SIMS_CHECK(w != nullptr);
+      const int64_t first = is_map ? 0 : dst_cols[k].first;
+      w->index_fill_(1, cols + first, 0.0);
+    }
+  }
+  return result;
+}
+
+void RunningMeanStdImpl::ResetColumns(int64_t offset, const torch::Tensor& mask) {
+  torch::NoGradGuard guard;
+  if (!mask.defined() || mask.numel() == 0) return;
+  const auto m = mask.to(torch::kBool);
+  mean_.narrow(0, offset, m.numel()).masked_fill_(m, 0.0);
+  var_.narrow(0, offset, m.numel()).masked_fill_(m, 1.0);
 }
 
 void RunningMeanStdImpl::ImportColumns(const RunningMeanStdImpl& src, int64_t src_offset,
                                        int64_t dst_offset, int64_t size) {
   torch::NoGradGuard guard;
+  PerFeatureCount();
   mean_.narrow(0, dst_offset, size).copy_(src.mean_.narrow(0, src_offset, size));
   var_.narrow(0, dst_offset, size).copy_(src.var_.narrow(0, src_offset, size));
-  count_.copy_(src.count_);
+  count_.narrow(0, dst_offset, size)
+      .copy_(src.count_.numel() == 1 ? src.count_.expand({size})
+                                     : src.count_.narrow(0, src_offset, size));
 }
 
 RunningMeanStdImpl::RunningMeanStdImpl(int64_t size, double clip) : clip_(clip) {
   mean_ = register_buffer("mean", torch::zeros({size}, torch::kFloat64));
   var_ = register_buffer("var", torch::ones({size}, torch::kFloat64));
-  count_ = register_buffer("count", torch::full({1}, 1e-4, torch::kFloat64));
+  // One count per feature: a warm start keeps the source's count for the inputs it shares
+  // (proprioception) and restarts the task inputs (Soften on a column range).
+  count_ = register_buffer("count", torch::full({size}, 1e-4, torch::kFloat64));
 }
 
 void RunningMeanStdImpl::Update(const torch::Tensor& x) {
@@ -166,8 +213,21 @@ void RunningMeanStdImpl::Merge(double n, const torch::Tensor& batch_mean,
   count_.copy_(total);
 }
 
+void RunningMeanStdImpl::PerFeatureCount() {
+  torch::NoGradGuard guard;
+  if (count_.numel() == 1 && mean_.numel() != 1)
+    count_.set_(count_.expand({mean_.size(0)}).clone());
+}
+
+void RunningMeanStdImpl::CapCount(int64_t offset, int64_t size, double count) {
+  torch::NoGradGuard guard;
+  PerFeatureCount();
+  count_.narrow(0, offset, size).clamp_max_(count);
+}
+
 int64_t RunningMeanStdImpl::Soften(double count, double constant_var) {
   torch::NoGradGuard guard;
+  PerFeatureCount();
   count_.clamp_max_(count);
   const auto constant = var_ < constant_var;
   mean_.masked_fill_(constant, 0.0);

@@ -40,18 +40,26 @@ class RunningMeanStdImpl : public torch::nn::Module {
   /// inputs whose variance is below `constant_var` at mean 0, variance 1 (a warm start from
   /// another task, where those inputs never varied). Returns how many inputs restarted.
   int64_t Soften(double count, double constant_var);
+  /// Caps the sample count of features [offset, offset + size) only.
+  void CapCount(int64_t offset, int64_t size, double count);
+  /// Files written before per-feature counts hold one count: spread it over the features.
+  void PerFeatureCount();
   /// Copies `size` features' statistics from `src` (at src_offset) to this one (at
   /// dst_offset), and takes src's sample count: a warm start from another observation layout.
   void ImportColumns(const RunningMeanStdImpl& src, int64_t src_offset, int64_t dst_offset,
                      int64_t size);
   /// Feature count.
   int64_t size() const { return mean_.size(0); }
+  /// Restarts the features offset + i where mask[i] (bool [n]) at mean 0, variance 1.
+  void ResetColumns(int64_t offset, const torch::Tensor& mask);
+  /// Per-feature variance (float64 [size]).
+  const torch::Tensor& var() const { return var_; }
   /// (x − mean) / sqrt(var + eps), clamped.
   torch::Tensor Normalize(const torch::Tensor& x) const;
   /// x · sqrt(var + eps) + mean (for value de-normalisation).
   torch::Tensor Denormalize(const torch::Tensor& x) const;
-  /// Number of samples folded in so far.
-  double count() const { return count_.item<double>(); }
+  /// Number of samples folded in so far (the smallest per-feature count).
+  double count() const { return count_.min().item<double>(); }
 
  private:
   torch::Tensor mean_, var_, count_;
@@ -148,17 +156,27 @@ int64_t ObsWidth(const std::vector<sim::ObsSegment>& segments);
 std::vector<std::pair<int64_t, int64_t>> EncoderColumns(
     const std::vector<sim::ObsSegment>& segments, const NetworkConfig& config);
 
+/// What ImportAcrossLayouts did.
+struct LayoutImport {
+  std::vector<std::string> new_segments;  ///< Segments the source did not have.
+  int64_t silenced = 0;  ///< Shared task inputs that were near-constant in the source.
+};
+
 /// Initialises `dst` (with normaliser dst_norm, layout dst_segments) from a policy trained on
 /// another layout (`src`, src_norm, src_segments) with the same network config: parameters of
 /// equal name and shape are copied; the first layer of the actor and critic MLPs takes the
 /// input columns of segments present in both (same name, kind and size) and zero weights for
 /// the new ones, so the warm-started policy acts as the source did; the normaliser takes the
-/// shared segments' statistics, the new ones start at mean 0, variance 1. Returns the names of
-/// the new segments. Throws sims::Error when a parameter cannot be matched.
-std::vector<std::string> ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
-                                             const std::vector<sim::ObsSegment>& src_segments,
-                                             ActorCritic& dst, RunningMeanStd& dst_norm,
-                                             const std::vector<sim::ObsSegment>& dst_segments,
-                                             const NetworkConfig& config);
+/// shared segments' statistics, the new ones start at mean 0, variance 1. Task inputs (all but
+/// "self" and style segments) whose source variance is below `quiet_var` are treated as new
+/// too (zero weights in the layer that reads them, fresh statistics): a walk policy saw its
+/// pelvis-goal height and flat-floor heightmap barely move, and the new task's values would
+/// otherwise hit the normaliser's clip bound through weights trained on that noise. Throws
+/// sims::Error when a parameter cannot be matched.
+LayoutImport ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
+                                 const std::vector<sim::ObsSegment>& src_segments,
+                                 ActorCritic& dst, RunningMeanStd& dst_norm,
+                                 const std::vector<sim::ObsSegment>& dst_segments,
+                                 const NetworkConfig& config, double quiet_var = 0);
 
 }  // namespace sims::learning

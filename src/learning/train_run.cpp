@@ -36,7 +36,7 @@ const std::vector<std::string>& CsvColumns() {
       "update_gflops",     "iteration_seconds", "samples_per_s",     "env_seconds",
       "inference_seconds", "disc_seconds",      "ppo_seconds",       "logging_seconds",
       "force_end_rate",    "reference_start_share", "success_rate_reference",
-      "success_rate_default"};
+      "success_rate_default", "kl", "learning_rate"};
   return cols;
 }
 
@@ -72,7 +72,9 @@ std::string CsvRow(const IterationStats& s, const IterationTiming& timing) {
                       s.force_end_rate,
                       s.reference_start_share,
                       s.success_rate_reference,
-                      s.success_rate_default};
+                      s.success_rate_default,
+                      s.kl,
+                      s.learning_rate};
   std::ostringstream out;
   out.precision(7);
   for (size_t i = 0; i < std::size(v); ++i) out << (i ? "," : "") << v[i];
@@ -231,6 +233,8 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   auto save_all = [&]() {
     if (!writer) return;
     trainer.SaveCheckpoint(ckpt_path);
+    // What a campaign commits between sessions (no replay buffer; --resume accepts it).
+    trainer.SaveCheckpoint(out / "checkpoint_compact.pt", /*with_replay=*/false);
     trainer.ExportPolicy(out / "policy.pt", extra.dump());
     io::WriteTrainingReport(csv_path, out / "report.html", "train_policy " + config.skill.skill);
   };

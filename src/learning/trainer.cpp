@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <sstream>
@@ -89,6 +90,7 @@ struct Trainer::Impl {
   int rank = 0, world = 1, check_every = 10;
   int64_t first_env = 0;
   int64_t iteration = 0, samples = 0;
+  double learning_rate = 0;  // the optimiser's current rate (the adaptive schedule moves it)
   std::vector<double> ep_return, ep_len;
   std::vector<uint8_t> ep_success;
 
@@ -118,7 +120,8 @@ struct Trainer::Impl {
   /// Loss sums over minibatches (each weighted by this rank's share).
   struct UpdateTotals {
     double actor = 0, critic = 0, bounds = 0, disc = 0, grad_penalty = 0, demo_accuracy = 0,
-           agent_accuracy = 0, clip_fraction = 0;
+           agent_accuracy = 0, clip_fraction = 0, kl = 0;
+    double minibatch_kl = 0;  // this rank's share of the last minibatch's KL
     int64_t steps = 0, disc_samples = 0, minibatch = 0;
   };
   /// Seconds of the update phases (for the time split).
@@ -131,6 +134,8 @@ struct Trainer::Impl {
   Batch PrepareBatch(Timings* timing);
   /// Mini-epochs of PPO (+ discriminator) steps over the batch.
   UpdateTotals Update(const Batch& b, Timings* timing);
+  /// The adaptive schedule's step after a minibatch whose KL (this rank's share) is given.
+  void AdaptLearningRate(double minibatch_kl);
   /// Accumulates the PPO loss gradients of samples `idx`.
   void PpoLoss(const Batch& b, const torch::Tensor& idx, double share, UpdateTotals* u);
   /// Accumulates the discriminator loss gradients for policy windows `agent_idx`.
@@ -389,6 +394,7 @@ Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> 
         torch::tensor(std::vector<int64_t>(styles.begin(), styles.end()), torch::kInt64);
     m.amp_norm->Update(m.demo_pool);
   }
+  m.learning_rate = config.ppo.learning_rate;
   m.optim = std::make_unique<torch::optim::Adam>(
       params, torch::optim::AdamOptions(config.ppo.learning_rate).eps(1e-8));
   m.AllocateRollout(config.ppo.horizon);
@@ -559,12 +565,20 @@ void Trainer::Impl::PpoLoss(const Batch& b, const torch::Tensor& idx, double sha
       ClippedSurrogateLoss(logp, old_logp, b.advantages.index_select(0, idx), ppo.clip);
   const auto critic = (v - b.returns.index_select(0, idx)).pow(2).mean();
   const auto bounds = BoundsLoss(mu);
-  const auto loss = actor + ppo.critic_coef * critic + ppo.bounds_coef * bounds;
+  // During the actor warm-up only the critic learns: a fresh value function (and value
+  // normaliser) gives a warm-started actor meaningless advantages at first.
+  const double actor_weight = iteration < ppo.actor_warmup_iterations ? 0.0 : 1.0;
+  const auto loss =
+      actor_weight * (actor + ppo.bounds_coef * bounds) + ppo.critic_coef * critic;
   (world == 1 ? loss : loss * share).backward();
   u->actor += actor.item<double>() * share;
   u->critic += critic.item<double>() * share;
   u->bounds += bounds.item<double>() * share;
   u->clip_fraction += ClipFraction(logp.detach(), old_logp, ppo.clip) * share;
+  // KL(old ‖ new) by the low-variance estimator E[(r − 1) − log r].
+  const auto log_r = (logp.detach() - old_logp);
+  u->minibatch_kl = ((log_r.exp() - 1) - log_r).mean().item<double>() * share;
+  u->kl += u->minibatch_kl;
 }
 
 void Trainer::Impl::DiscriminatorLoss(const Batch& b, const torch::Tensor& agent_idx, double share,
@@ -638,6 +652,7 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
       const auto chunk = perm.slice(0, k * mb, (k + 1) * mb);
       const auto idx = local_of(chunk);
       optim->zero_grad();
+      u.minibatch_kl = 0;
       if (idx.size(0) > 0)
         PpoLoss(b, idx, static_cast<double>(idx.size(0)) / static_cast<double>(mb), &u);
       StartReduce(ac_params, &ac_grads);
@@ -661,11 +676,26 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
       if (use_amp && cfg.amp.grad_norm > 0)
         torch::nn::utils::clip_grad_norm_(disc_params, cfg.amp.grad_norm);
       optim->step();
+      // (While the actor is frozen its KL says nothing: the rate stays.)
+      if (ppo.lr_schedule == "adaptive" && iteration >= ppo.actor_warmup_iterations)
+        AdaptLearningRate(u.minibatch_kl);
       timing->ppo += Since(t_phase);
       ++u.steps;
     }
   }
   return u;
+}
+
+void Trainer::Impl::AdaptLearningRate(double minibatch_kl) {
+  // Every rank applies the same change: the KL is summed over the ranks' shares.
+  if (comm) comm->AllReduceSum(&minibatch_kl, 1);
+  const double threshold = cfg.ppo.kl_threshold;
+  if (minibatch_kl > 2.0 * threshold)
+    learning_rate = std::max(learning_rate / 1.5, 1e-6);
+  else if (minibatch_kl < 0.5 * threshold)
+    learning_rate = std::min(learning_rate * 1.5, 1e-2);
+  for (auto& group : optim->param_groups())
+    static_cast<torch::optim::AdamOptions&>(group.options()).lr(learning_rate);
 }
 
 IterationStats Trainer::RunIteration() {
@@ -711,7 +741,8 @@ IterationStats Trainer::RunIteration() {
                    roll.force_sum,
                    roll.reference_episodes,
                    roll.reference_success,
-                   roll.default_success};
+                   roll.default_success,
+                   u.kl};
   if (m.comm) m.comm->AllReduceSum(sums, static_cast<int64_t>(std::size(sums)));
   const double episodes = sums[4];
   const double batch_size = static_cast<double>(T * N * m.world);
@@ -735,6 +766,8 @@ IterationStats Trainer::RunIteration() {
   st.disc_acc_demo = sums[13] / s;
   st.disc_acc_agent = sums[14] / s;
   st.clip_fraction = sums[15] / s;
+  st.kl = sums[20] / s;
+  st.learning_rate = m.learning_rate;
   st.force_end_rate = episodes > 0 ? sums[16] / episodes : std::nan("");
   st.reference_start_share = episodes > 0 ? sums[17] / episodes : std::nan("");
   st.success_rate_reference = sums[17] > 0 ? sums[18] / sums[17] : std::nan("");
@@ -819,6 +852,7 @@ void LoadPolicyWeights(torch::serialize::InputArchive& archive, ActorCritic& ac,
                        RunningMeanStd& obs_norm) {
   ReadModule(archive, "actor_critic", ac);
   ReadModule(archive, "obs_norm", obs_norm);
+  obs_norm->PerFeatureCount();
 }
 }  // namespace
 
@@ -851,6 +885,7 @@ void Trainer::Impl::WriteLearnerState(torch::serialize::OutputArchive& archive) 
   archive.write("optimizer", opt);
   WriteTensor(archive, "rng", RngTensor(m.rng));
   WriteTensor(archive, "counters", torch::tensor({m.iteration, m.samples}, torch::kInt64));
+  WriteTensor(archive, "learning_rate", torch::tensor({m.learning_rate}, torch::kFloat64));
   WriteTensor(archive, "config", StringTensor(ConfigToJson(m.cfg).dump()));
 }
 
@@ -864,9 +899,11 @@ void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
   ReadModule(archive, "actor_critic", m.ac);
   ReadModule(archive, "obs_norm", m.obs_norm);
   ReadModule(archive, "value_norm", m.value_norm);
+  m.obs_norm->PerFeatureCount();
   if (m.use_amp) {
     ReadModule(archive, "disc", m.disc);
     ReadModule(archive, "amp_norm", m.amp_norm);
+    m.amp_norm->PerFeatureCount();
   }
   torch::serialize::InputArchive opt;
   archive.read("optimizer", opt);
@@ -875,16 +912,23 @@ void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
   const auto counters = ReadTensor(archive, "counters");
   m.iteration = counters[0].item<int64_t>();
   m.samples = counters[1].item<int64_t>();
+  // The adaptive schedule's rate (checkpoints from before it keep the configured one).
+  torch::Tensor lr;
+  m.learning_rate = archive.try_read("learning_rate", lr, /*is_buffer=*/true)
+                        ? lr[0].item<double>()
+                        : m.cfg.ppo.learning_rate;
+  for (auto& group : m.optim->param_groups())
+    static_cast<torch::optim::AdamOptions&>(group.options()).lr(m.learning_rate);
   RebuildDemoPool();
 }
 
-void Trainer::SaveCheckpoint(const std::filesystem::path& path) const {
+void Trainer::SaveCheckpoint(const std::filesystem::path& path, bool with_replay) const {
   const auto& m = *impl_;
   torch::serialize::OutputArchive archive;
   m.WriteLearnerState(archive);
   // This rank's own state: replay buffer, sampling streams, episodes, environments. With
   // ranks, rank 0 writes the checkpoint; the others restart their environments on resume.
-  if (m.use_amp) {
+  if (m.use_amp && with_replay) {
     WriteTensor(archive, "replay_data", m.replay->data());
     WriteTensor(archive, "replay_styles", m.replay->styles());
     WriteTensor(archive, "replay_size", torch::tensor({m.replay->size()}, torch::kInt64));
@@ -911,14 +955,18 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
     torch::serialize::InputArchive archive;
     archive.load_from(path.string());
     m.ReadLearnerState(archive, path.string());
-    if (m.use_amp) {
-      const auto data = ReadTensor(archive, "replay_data");
+    torch::Tensor data;
+    if (m.use_amp && archive.try_read("replay_data", data, /*is_buffer=*/true)) {
       if (data.sizes() != m.replay->data().sizes())
         ThrowInputError(path.string(), "replay_data", "a replay buffer of the configured size",
                         "another size");
       m.replay->data().copy_(data);
       m.replay->styles().copy_(ReadTensor(archive, "replay_styles"));
       m.replay->set_size(ReadTensor(archive, "replay_size")[0].item<int64_t>());
+    } else if (m.use_amp) {
+      spdlog::info("{}: a compact checkpoint; the AMP replay buffer refills from the next "
+                   "rollouts",
+                   path.string());
     }
     // Checkpoints from before per-environment noise streams keep the fresh ones.
     torch::Tensor t;
@@ -999,16 +1047,29 @@ void Trainer::InitFromPolicy(const std::filesystem::path& path) {
     ActorCritic src(segs, m.act_dim, m.cfg.network);
     RunningMeanStd src_norm(offset, m.cfg.ppo.obs_clip);
     LoadPolicyWeights(archive, src, src_norm);
-    const auto fresh =
-        ImportAcrossLayouts(src, src_norm, segs, m.ac, m.obs_norm, m.segments, m.cfg.network);
+    const LayoutImport imported =
+        ImportAcrossLayouts(src, src_norm, segs, m.ac, m.obs_norm, m.segments, m.cfg.network,
+                            m.cfg.ppo.warm_start_quiet_var);
     std::string names;
-    for (const auto& n : fresh) names += (names.empty() ? "" : ", ") + n;
-    spdlog::info("{}: warm start across layouts; new inputs start silent: {}", path.string(),
-                 names.empty() ? "none" : names);
+    for (const auto& n : imported.new_segments) names += (names.empty() ? "" : ", ") + n;
+    spdlog::info(
+        "{}: warm start across layouts; new inputs start silent: {}; {} task inputs that were "
+        "near-constant there (variance < {}) too",
+        path.string(), names.empty() ? "none" : names, imported.silenced,
+        m.cfg.ppo.warm_start_quiet_var);
   });
-  const int64_t restarted = m.obs_norm->Soften(m.cfg.ppo.warm_start_obs_count, 1e-6);
-  spdlog::info("{}: observation normaliser counts as {} samples; {} inputs constant there restart",
-               path.string(), m.cfg.ppo.warm_start_obs_count, restarted);
+  // The task inputs' statistics count as warm_start_obs_count samples so the new task's take
+  // over within a few iterations; the proprioceptive ("self") inputs keep the source's count:
+  // renormalising them to the new task's poses would change what the imported policy does
+  // before it has learnt anything (a walk policy then falls within 1.5 s).
+  for (const auto& seg : m.segments)
+    if (seg.name != "self" && seg.kind != sim::ObsSegment::Kind::kStyle)
+      m.obs_norm->CapCount(seg.offset, seg.size, m.cfg.ppo.warm_start_obs_count);
+  const int64_t restarted = m.obs_norm->Soften(std::numeric_limits<double>::infinity(), 1e-6);
+  spdlog::info(
+      "{}: task inputs of the observation normaliser count as {} samples (the self observation "
+      "keeps its count); {} inputs constant there restart",
+      path.string(), m.cfg.ppo.warm_start_obs_count, restarted);
 }
 
 void Trainer::ExportPolicy(const std::filesystem::path& path, const std::string& extra_json) const {

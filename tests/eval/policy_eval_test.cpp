@@ -92,12 +92,14 @@ TEST(PolicyEvalTest, WalkSmokeAndDeterminism) {
 }
 
 // The success path: a walk task whose success radius reaches past the 3–5 m evaluation
-// targets is met at the first control step by any policy that has not fallen, so an untrained
-// policy succeeds in every trial; a radius inside that range splits the trials by target
-// distance. Episodes of 10 steps (1/3 s) end before an untrained humanoid can fall or move far.
+// targets is met from the first control step by any policy that has not fallen, so an untrained
+// policy completes every trial once it has held for success_hold_steps (3 here); a radius
+// inside that range splits the trials by target distance. Episodes of 10 steps (1/3 s) end
+// before an untrained humanoid can fall or move far.
 TEST(PolicyEvalTest, SuccessesAreCountedAndTimed) {
   task::SkillConfig sc = WalkConfig();
   sc.walk.success_radius = 6.0;
+  sc.success_hold_steps = 3;
   const fs::path policy = TinyPolicy(sc, 10, "eval_success");
   PolicyEvalOptions o = TwoEnvOptions(policy, 6);
   o.seed = 2;
@@ -105,15 +107,15 @@ TEST(PolicyEvalTest, SuccessesAreCountedAndTimed) {
   for (const auto& t : all.results) {
     EXPECT_TRUE(t.success);
     EXPECT_FALSE(t.fell);
-    EXPECT_EQ(t.success_step, 1);
+    EXPECT_EQ(t.success_step, 3);  // completed once success held for 3 steps
     EXPECT_EQ(t.steps_completed, 1);
     EXPECT_EQ(t.length, 9);           // ended by time: the reset state is the first of the 10
     EXPECT_GT(t.contact_error, 2.5);  // still far from the target: success came from the radius
   }
   EXPECT_EQ(all.success_rate, 1.0);
   EXPECT_EQ(all.success_steps, 1.0);
-  EXPECT_DOUBLE_EQ(all.time_to_success, all.control_dt);
-  EXPECT_DOUBLE_EQ(all.ToJson()["time_to_success_s"].get<double>(), all.control_dt);
+  EXPECT_DOUBLE_EQ(all.time_to_success, 3 * all.control_dt);
+  EXPECT_DOUBLE_EQ(all.ToJson()["time_to_success_s"].get<double>(), 3 * all.control_dt);
 
   // Same policy, radius 4 m (a config replacing the metadata): trials whose target lies within
   // 4 m succeed at once, the others never do; the aggregates count only the successes.
@@ -128,7 +130,7 @@ TEST(PolicyEvalTest, SuccessesAreCountedAndTimed) {
   int successes = 0;
   for (const auto& t : some.results) {
     successes += t.success;
-    EXPECT_EQ(t.success_step, t.success ? 1 : -1);
+    EXPECT_EQ(t.success_step, t.success ? 3 : -1);
     EXPECT_EQ(t.steps_completed, t.success ? 1 : 0);
     if (t.success)
       EXPECT_LT(t.contact_error, 4.2);
@@ -139,7 +141,7 @@ TEST(PolicyEvalTest, SuccessesAreCountedAndTimed) {
   ASSERT_LT(successes, 6) << "pick a seed whose targets fall on both sides of 4 m";
   EXPECT_DOUBLE_EQ(some.success_rate, successes / 6.0);
   EXPECT_DOUBLE_EQ(some.success_steps, successes / 6.0);
-  EXPECT_DOUBLE_EQ(some.time_to_success, some.control_dt);  // mean over successes only
+  EXPECT_DOUBLE_EQ(some.time_to_success, 3 * some.control_dt);  // mean over successes only
 }
 
 TEST(PolicyEvalTest, BadInputNamesTheProblem) {

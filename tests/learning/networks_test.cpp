@@ -68,8 +68,9 @@ TEST(NetworksTest, ImportAcrossLayoutsKeepsTheSourcePolicy) {
   }
   RunningMeanStd src_norm(28), dst_norm(34);
   src_norm->Update(torch::randn({64, 28}) * 3 + 1);
-  const auto fresh = ImportAcrossLayouts(src, src_norm, src_segs, dst, dst_norm, dst_segs, c);
-  EXPECT_EQ(fresh, std::vector<std::string>{"task"});
+  const auto imported = ImportAcrossLayouts(src, src_norm, src_segs, dst, dst_norm, dst_segs, c);
+  EXPECT_EQ(imported.new_segments, std::vector<std::string>{"task"});
+  EXPECT_EQ(imported.silenced, 0);
   const auto raw_src = torch::randn({8, 28}) * 2;
   const auto task = torch::randn({8, 6}) * 10;
   const auto raw_dst =
@@ -82,6 +83,27 @@ TEST(NetworksTest, ImportAcrossLayoutsKeepsTheSourcePolicy) {
                               1e-4));
   EXPECT_TRUE(torch::allclose(dst->Mean(n_dst, raw_dst), src->Mean(n_src, raw_src), 1e-5, 1e-5));
   EXPECT_TRUE(torch::allclose(dst->Value(n_dst, raw_dst), src->Value(n_src, raw_src), 1e-5, 1e-5));
+  // Quiet inputs: the source's contact-goal columns barely moved (variance 1e-6) and its
+  // heightmap cell 0 neither; with quiet_var 1e-3 they start silent, so the warm-started
+  // policy acts as the source did with those inputs at their means, whatever they hold now.
+  RunningMeanStd quiet_norm(28);
+  auto batch = torch::randn({256, 28}) * 3 + 1;
+  batch.slice(1, 5, 9).mul_(1e-3);
+  batch.slice(1, 9, 10).mul_(1e-3);
+  quiet_norm->Update(batch);
+  ActorCritic dst2(dst_segs, 4, c);
+  RunningMeanStd dst2_norm(34);
+  const auto q = ImportAcrossLayouts(src, quiet_norm, src_segs, dst2, dst2_norm, dst_segs, c, 1e-3);
+  EXPECT_EQ(q.silenced, 5);
+  auto at_mean = raw_src.clone();
+  {
+    auto mean = quiet_norm->Denormalize(torch::zeros({1, 28}));
+    at_mean.slice(1, 5, 10).copy_(mean.slice(1, 5, 10).expand({8, 5}));
+  }
+  const auto n_mean = quiet_norm->Normalize(at_mean), n_q = dst2_norm->Normalize(raw_dst);
+  EXPECT_TRUE(torch::allclose(dst2->Mean(n_q, raw_dst), src->Mean(n_mean, at_mean), 1e-4, 1e-4));
+  EXPECT_TRUE(torch::allclose(n_q.slice(1, 5, 9),
+                              torch::clamp(raw_dst.slice(1, 5, 9) / std::sqrt(1 + 1e-5), -5, 5)));
   // A different network cannot be imported.
   NetworkConfig other = c;
   other.actor_hidden = {32, 16};

@@ -1,5 +1,8 @@
 #include "sims/learning/trainer.h"
 
+#include <cmath>
+#include <filesystem>
+
 #include <gtest/gtest.h>
 #include <torch/torch.h>
 
@@ -77,6 +80,77 @@ TEST(TrainerTest, CheckpointRestoresIdenticalActions) {
   EXPECT_THROW(Policy(dir / "policy.pt"), Error);
 }
 
+// A compact checkpoint (no replay buffer) is what a campaign commits between sessions: it is
+// smaller, restores the networks and counters exactly, and training goes on from it.
+TEST(TrainerTest, CompactCheckpointResumesWithoutTheReplay) {
+  const auto dir = sims::testing::TempDir("trainer_compact");
+  LearnerConfig c = ToyConfig(true);
+  c.amp.replay_size = 20000;  // large enough that the buffer dominates the file
+  Trainer a = MakeTrainer(c);
+  a.RunIteration();
+  a.SaveCheckpoint(dir / "full.pt");
+  a.SaveCheckpoint(dir / "compact.pt", /*with_replay=*/false);
+  EXPECT_LT(std::filesystem::file_size(dir / "compact.pt"),
+            std::filesystem::file_size(dir / "full.pt") / 2);
+  Trainer b = MakeTrainer(c, /*env_seed=*/99);
+  b.LoadCheckpoint(dir / "compact.pt");
+  EXPECT_EQ(b.iteration(), 1);
+  EXPECT_EQ(a.FlatParameters(), b.FlatParameters());
+  const IterationStats s = b.RunIteration();
+  EXPECT_EQ(s.iteration, 2);
+  EXPECT_TRUE(std::isfinite(s.disc_loss));
+}
+
+// The actor warm-up: for the first K iterations only the critic learns (a warm-started actor
+// is not pushed around by a fresh critic's advantages); afterwards the actor learns too.
+TEST(TrainerTest, ActorWarmupFreezesTheActorOnly) {
+  LearnerConfig c = ToyConfig(false);
+  c.ppo.actor_warmup_iterations = 2;
+  Trainer t = MakeTrainer(c);
+  // FlatParameters lists the actor's MLP first (the point-mass observation has no encoder
+  // parameters): 4 → 64 → 64 → 2 weights and biases.
+  const size_t actor_n = (4 + 1) * 64 + (64 + 1) * 64 + (64 + 1) * 2;
+  auto split = [&](const std::vector<float>& p) {
+    return std::make_pair(std::vector<float>(p.begin(), p.begin() + actor_n),
+                          std::vector<float>(p.begin() + actor_n, p.end()));
+  };
+  const auto [actor0, critic0] = split(t.FlatParameters());
+  t.RunIteration();
+  t.RunIteration();
+  const auto [actor2, critic2] = split(t.FlatParameters());
+  EXPECT_EQ(actor2, actor0);  // the actor has not moved
+  EXPECT_NE(critic2, critic0);
+  t.RunIteration();
+  EXPECT_NE(split(t.FlatParameters()).first, actor0);  // from iteration 3 on it learns
+}
+
+// The adaptive schedule: a KL target far below what an update moves shrinks the rate by 1.5
+// per minibatch step, one far above grows it; the rate is part of the checkpoint.
+TEST(TrainerTest, AdaptiveLearningRateFollowsTheKl) {
+  const auto dir = sims::testing::TempDir("trainer_adaptive");
+  LearnerConfig c = ToyConfig(false);
+  c.ppo.lr_schedule = "adaptive";
+  c.ppo.kl_threshold = 1e-12;
+  Trainer shrink = MakeTrainer(c);
+  const IterationStats s = shrink.RunIteration();
+  EXPECT_GT(s.kl, 2e-12);
+  // 5 epochs × 2 minibatches, each a ÷1.5 step (the very first may see the rollout's own
+  // policy, KL ≈ 0, and grow instead).
+  EXPECT_LT(s.learning_rate, c.ppo.learning_rate / std::pow(1.5, 7));
+  EXPECT_GT(s.learning_rate, c.ppo.learning_rate / std::pow(1.5, 10) * 0.999);
+  shrink.SaveCheckpoint(dir / "ckpt.pt");
+  Trainer resumed = MakeTrainer(c);
+  resumed.LoadCheckpoint(dir / "ckpt.pt");
+  EXPECT_LT(resumed.RunIteration().learning_rate, s.learning_rate / std::pow(1.5, 7));
+  c.ppo.kl_threshold = 1e3;
+  Trainer grow = MakeTrainer(c);
+  EXPECT_NEAR(grow.RunIteration().learning_rate, std::min(c.ppo.learning_rate * std::pow(1.5, 10),
+                                                          1e-2),
+              1e-12);
+  c.ppo.lr_schedule = "constant";
+  EXPECT_EQ(MakeTrainer(c).RunIteration().learning_rate, c.ppo.learning_rate);
+}
+
 // N iterations straight equal N/2, checkpoint, fresh process state, resume, N/2 more.
 TEST(TrainerTest, ResumeIsEquivalentToStraightRun) {
   const auto dir = sims::testing::TempDir("resume");
@@ -130,13 +204,14 @@ TEST(TrainerTest, ClipsEachNetworkOnItsOwn) {
   EXPECT_NE(ta.FlatParameters(), tb.FlatParameters()) << "the critics differ";
 }
 
-double PolicyObsCount(const std::filesystem::path& policy) {
+// The per-feature sample counts of a policy's observation normaliser.
+torch::Tensor PolicyObsCounts(const std::filesystem::path& policy) {
   torch::serialize::InputArchive archive, norm;
   archive.load_from(policy.string());
   archive.read("obs_norm", norm);
   torch::Tensor count;
   norm.read("count", count, /*is_buffer=*/true);
-  return count.item<double>();
+  return count;
 }
 
 // --init-policy keeps the source's weights but caps its normaliser count, so the new task's
@@ -151,8 +226,9 @@ TEST(TrainerTest, InitFromPolicyCapsTheNormaliserCount) {
   Trainer warm = MakeTrainer(c, /*env_seed=*/8);
   warm.InitFromPolicy(dir / "source.pt");
   warm.ExportPolicy(dir / "warm.pt");
-  EXPECT_GT(PolicyObsCount(dir / "source.pt"), 2000.0);  // 3 iterations × 800 samples
-  EXPECT_DOUBLE_EQ(PolicyObsCount(dir / "warm.pt"), 50.0);
+  EXPECT_GT(PolicyObsCounts(dir / "source.pt").min().item<double>(), 2000.0);  // 3 × 800
+  // The point mass observes one task segment ("state"): its count is capped.
+  EXPECT_DOUBLE_EQ(PolicyObsCounts(dir / "warm.pt").max().item<double>(), 50.0);
 }
 
 }  // namespace

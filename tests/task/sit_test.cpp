@@ -326,6 +326,9 @@ TEST(SitSkillTest, ExcessiveForceTerminates) {
   }
   EXPECT_TRUE(terminated);
   EXPECT_EQ(s.env->stats().task_ends, 1);
+  // Logged as a force termination, not a fall.
+  EXPECT_EQ(s.env->end_reasons()[0], sim::EndReason::kTaskTerminate);
+  EXPECT_EQ(s.env->stats().falls, 0);
 }
 
 TEST(SitSkillTest, SnapshotRestoresTheEpisode) {

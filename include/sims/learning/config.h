@@ -53,6 +53,17 @@ struct PpoConfig {
   /// the new task's statistics take over within a few iterations (walk's ≈5 M would freeze
   /// them); inputs constant in the source task restart at mean 0, variance 1.
   double warm_start_obs_count = 4096;
+  /// Warm start across layouts: task inputs with a source variance below this start silent.
+  double warm_start_quiet_var = 1e-2;
+  /// The actor does not learn in the first K iterations (the critic catches up with a
+  /// warm-started actor; 0 = off).
+  int actor_warmup_iterations = 0;
+  /// "constant" or "adaptive" (rl_games): after every minibatch the learning rate shrinks by
+  /// 1.5 when the policy's KL divergence exceeded 2·kl_threshold and grows by 1.5 when it
+  /// stayed under kl_threshold / 2 (within [1e-6, 1e-2]). With σ = 0.055 a constant rate
+  /// overshoots: clip fractions of 0.3–0.7 per update.
+  std::string lr_schedule = "constant";
+  double kl_threshold = 0.008;  ///< Target KL per minibatch of the adaptive schedule.
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -72,6 +83,10 @@ struct PpoConfig {
     a->Visit(SIMS_NVP(normalize_value));
     a->Visit(SIMS_NVP(obs_clip));
     a->Visit(SIMS_NVP(warm_start_obs_count));
+    a->Visit(SIMS_NVP(warm_start_quiet_var));
+    a->Visit(SIMS_NVP(actor_warmup_iterations));
+    a->Visit(SIMS_NVP(lr_schedule));
+    a->Visit(SIMS_NVP(kl_threshold));
   }
   /// Checks ranges.
   void Validate() const;

@@ -38,6 +38,8 @@ struct IterationStats {
   double disc_acc_demo = 0;        ///< Discriminator accuracy on demo windows.
   double disc_acc_agent = 0;       ///< Discriminator accuracy on policy/replay windows.
   double clip_fraction = 0;        ///< Fraction of clipped ratios.
+  double kl = 0;                   ///< Mean KL(old ‖ new) per minibatch step.
+  double learning_rate = 0;        ///< The learning rate after this update.
   double env_samples_per_s = 0;    ///< Collection throughput (incl. policy inference).
   double train_samples_per_s = 0;  ///< Update throughput (samples × epochs / s).
   double update_gflop = 0;         ///< Estimated GFLOP spent in the update.
@@ -69,10 +71,13 @@ class Trainer {
   IterationStats RunIteration();
   /// Iterations completed.
   int64_t iteration() const;
-  /// Writes a full checkpoint atomically: networks, optimiser, normalisers, RNG, replay
-  /// buffer, environment state and counters.
-  void SaveCheckpoint(const std::filesystem::path& path) const;
-  /// Restores SaveCheckpoint() output; throws sims::Error naming the file on mismatch.
+  /// Writes a checkpoint atomically: networks, optimiser, normalisers, RNG, environment state,
+  /// counters and (with_replay) the AMP replay buffer. Without it the file is ~10× smaller
+  /// (what a training campaign commits between sessions); resuming from it is exact except
+  /// that the replay buffer refills from the next rollouts.
+  void SaveCheckpoint(const std::filesystem::path& path, bool with_replay = true) const;
+  /// Restores SaveCheckpoint() output (with or without the replay buffer); throws sims::Error
+  /// naming the file on mismatch.
   void LoadCheckpoint(const std::filesystem::path& path);
   /// Copies rank 0's learner state (networks, normalisers, optimiser, counters) to every
   /// rank; call on all ranks after rank 0 alone loaded a checkpoint or policy. No-op alone.
