@@ -1,5 +1,10 @@
 #include "learning/networks.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include <omp.h>
+
 #include "sims/core/error.h"
 
 namespace sims::learning {
@@ -11,25 +16,122 @@ torch::Tensor Activate(const torch::Tensor& x, const std::string& name) {
   return torch::tanh(x);
 }
 
-// OpenBLAS blocks a GEMM's inner dimension K in panels of GEMM_Q and splits the last
-// remainder in (Q, 2Q) in two — rounded to its M unroll in the one-thread driver, halved in the
-// threaded one — so for K > Q the partial sums, and the last bits of the product, depend on the
-// thread count unless K is a multiple of 2 × unroll (measured: K > 320 and K % 32 != 0 differ
-// between 1 and 2 threads on Debian's 0.3.21). Inputs up to this width need one panel.
-constexpr int64_t kSinglePanelWidth = 256;
-constexpr int64_t kPanelAlign = 64;  // 2 × the largest sgemm M unroll (32), a divisor of Q
+// How many threads a GEMM uses changes its rounding on some CPUs and not on others: OpenBLAS
+// 0.3.21 blocks the inner dimension in panels whose size and threaded split depend on the
+// CPU's kernel (an Intel machine here differed only for K > 320, K % 32 != 0; an AMD EPYC for
+// every K tried). So no GEMM here is ever threaded: the rows of a batch go in fixed chunks of
+// kRowChunk, each chunk is one single-threaded GEMM (BLAS inside an active OpenMP region
+// runs on the calling thread), the chunks run in parallel, and the weight gradient, a sum over rows,
+// adds the chunks' partial products in chunk order. Every value is then computed by the same
+// operations at any thread count.
+constexpr int64_t kRowChunk = 128;
 
-// y = x W^T + b with K padded by zero columns to a multiple of kPanelAlign: the zeros add
-// exact zeros, so the value is the same linear map, and its rounding no longer depends on how
-// many threads the BLAS uses. The parameters keep their shapes (checkpoints load as before);
-// the gradient of W is the slice of the padded weight's gradient.
+int64_t Chunks(int64_t rows) { return (rows + kRowChunk - 1) / kRowChunk; }
+
+// f(c) for each chunk c in [0, n) on the process's threads. With several threads the calls run
+// inside an active OpenMP region (even for one chunk), where OpenBLAS keeps to the calling
+// thread; with one thread the BLAS has one thread anyway. While autograd records (a backward
+// pass with create_graph, for the gradient penalty) the chunks run in order on this thread:
+// the same single-threaded operations, without building one graph from several threads.
+template <class F>
+void ForChunks(int64_t n, const F& f) {
+  const int threads = omp_get_max_threads();
+  if (threads <= 1) {
+    for (int64_t c = 0; c < n; ++c) f(c);
+  } else if (torch::GradMode::is_enabled()) {
+    // The encountering thread (number 0, whose autograd state this is) runs every chunk.
+#pragma omp parallel num_threads(threads)
+    if (omp_get_thread_num() == 0)
+      for (int64_t c = 0; c < n; ++c) f(c);
+  } else {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (int64_t c = 0; c < n; ++c) f(c);
+  }
+}
+
+// The row chunks f(first row, rows) of a result, concatenated.
+template <class F>
+torch::Tensor ByRowChunks(int64_t rows, const F& f) {
+  std::vector<torch::Tensor> parts(Chunks(rows));
+  ForChunks(static_cast<int64_t>(parts.size()), [&](int64_t c) {
+    const int64_t r0 = c * kRowChunk;
+    parts[c] = f(r0, std::min(kRowChunk, rows - r0));
+  });
+  return parts.size() == 1 ? parts[0] : torch::cat(parts, 0);
+}
+
+// The row chunks of a product are added in chunk order (the weight gradient, a sum over rows).
+torch::Tensor SumOfChunks(std::vector<torch::Tensor>& parts) {
+  for (size_t c = 1; c < parts.size(); ++c) parts[0] = parts[0] + parts[c];
+  return parts[0];
+}
+
+// a · b for a [R, K], b [K, N], by row chunks of a; differentiable to any order with the
+// same chunking (the gradient penalty differentiates a backward pass).
+class ChunkedMatmul : public torch::autograd::Function<ChunkedMatmul> {
+ public:
+  static torch::Tensor forward(torch::autograd::AutogradContext* ctx, const torch::Tensor& a,
+                               const torch::Tensor& b) {
+    ctx->save_for_backward({a, b});
+    return ByRowChunks(a.size(0), [&](int64_t r0, int64_t n) {
+      return torch::mm(a.narrow(0, r0, n), b);
+    });
+  }
+  static torch::autograd::tensor_list backward(torch::autograd::AutogradContext* ctx,
+                                               torch::autograd::tensor_list grads) {
+    const auto saved = ctx->get_saved_variables();
+    const auto& a = saved[0];
+    const auto& b = saved[1];
+    const auto g = grads[0];
+    const int64_t rows = a.size(0);
+    std::vector<torch::Tensor> parts(Chunks(rows));
+    if (!torch::GradMode::is_enabled()) {
+      // A plain backward: each chunk's products once, single-threaded, chunks in parallel.
+      const auto bt = b.t();
+      const auto ga = ByRowChunks(rows, [&](int64_t r0, int64_t n) {
+        return torch::mm(g.narrow(0, r0, n), bt);
+      });
+      ForChunks(static_cast<int64_t>(parts.size()), [&](int64_t c) {
+        const int64_t r0 = c * kRowChunk, n = std::min(kRowChunk, rows - r0);
+        parts[c] = torch::mm(a.narrow(0, r0, n).t(), g.narrow(0, r0, n));
+      });
+      return {ga, SumOfChunks(parts)};
+    }
+    // Recorded for a second derivative: the same chunking, through this function again.
+    const auto ga = ChunkedMatmul::apply(g, b.t());
+    // ∂/∂b = Σ_chunks a_cᵀ g_c, each a [K, n] × [n, N] product by K-row chunks, in order.
+    for (size_t c = 0; c < parts.size(); ++c) {
+      const int64_t r0 = static_cast<int64_t>(c) * kRowChunk, n = std::min(kRowChunk, rows - r0);
+      parts[c] = ChunkedMatmul::apply(a.narrow(0, r0, n).t(), g.narrow(0, r0, n));
+    }
+    return {ga, SumOfChunks(parts)};
+  }
+};
+
+// x + b (b broadcast over rows) whose bias gradient sums the rows in fixed chunks.
+class AddBias : public torch::autograd::Function<AddBias> {
+ public:
+  static torch::Tensor forward(torch::autograd::AutogradContext* ctx, const torch::Tensor& x,
+                               const torch::Tensor& b) {
+    ctx->saved_data["rows"] = x.size(0);
+    return x + b;
+  }
+  static torch::autograd::tensor_list backward(torch::autograd::AutogradContext* ctx,
+                                               torch::autograd::tensor_list grads) {
+    const auto g = grads[0];
+    const int64_t rows = ctx->saved_data["rows"].toInt();
+    // Slices small enough that torch sums each on one thread.
+    const int64_t slice = std::max<int64_t>(1, 16384 / std::max<int64_t>(g.size(1), 1));
+    std::vector<torch::Tensor> parts;
+    for (int64_t r0 = 0; r0 < rows; r0 += slice)
+      parts.push_back(g.narrow(0, r0, std::min(slice, rows - r0)).sum(0));
+    return {g, SumOfChunks(parts)};
+  }
+};
+
 torch::Tensor ThreadStableLinear(torch::nn::Linear& layer, const torch::Tensor& x) {
-  const int64_t k = x.size(-1);
-  if (k <= kSinglePanelWidth || k % kPanelAlign == 0) return layer->forward(x);
-  const int64_t pad = kPanelAlign - k % kPanelAlign;
-  const auto x_pad = torch::constant_pad_nd(x, {0, pad});
-  const auto w_pad = torch::constant_pad_nd(layer->weight, {0, pad});
-  return torch::nn::functional::linear(x_pad, w_pad, layer->bias);
+  if (x.dim() != 2 || x.size(0) == 0) return layer->forward(x);
+  return AddBias::apply(ChunkedMatmul::apply(x, layer->weight.t()), layer->bias);
 }
 }  // namespace
 
@@ -363,15 +465,42 @@ DiscriminatorImpl::DiscriminatorImpl(int64_t amp_dim, int64_t style_dim,
 
 torch::Tensor DiscriminatorImpl::forward(const torch::Tensor& amp, const torch::Tensor& style) {
   const auto x = style_dim_ > 0 ? torch::cat({amp, style}, 1) : amp;
-  return logit_->forward(trunk_->forward(x)).squeeze(-1);
+  return ThreadStableLinear(logit_, trunk_->forward(x)).squeeze(-1);
 }
 
-torch::Tensor DiscriminatorImpl::LogitWeightNorm() const { return logit_->weight.pow(2).sum(); }
+torch::Tensor DiscriminatorImpl::LogitWeightNorm() const {
+  return StableSum(logit_->weight.pow(2));
+}
 
 torch::Tensor DiscriminatorImpl::WeightNorm() const {
-  auto total = logit_->weight.pow(2).sum();
-  for (const auto& l : trunk_->layers()) total = total + l->weight.pow(2).sum();
+  auto total = StableSum(logit_->weight.pow(2));
+  for (const auto& l : trunk_->layers()) total = total + StableSum(l->weight.pow(2));
   return total;
+}
+
+torch::Tensor StableSum(const torch::Tensor& x) {
+  // torch splits a sum over more than 32768 elements by thread; sum fixed slices of fewer,
+  // then the partial sums in order.
+  constexpr int64_t kSlice = 16384;
+  const auto flat = x.reshape({-1});
+  const int64_t n = flat.size(0);
+  if (n <= kSlice) return flat.sum();
+  std::vector<torch::Tensor> parts;
+  for (int64_t i = 0; i < n; i += kSlice) parts.push_back(flat.narrow(0, i, std::min(kSlice, n - i)).sum());
+  return torch::stack(parts).sum();
+}
+
+double ClipGradNorm(const std::vector<torch::Tensor>& params, double max_norm) {
+  torch::NoGradGuard guard;
+  double sq = 0;
+  for (const auto& p : params)
+    if (p.grad().defined()) sq += StableSum(p.grad().to(torch::kFloat64).pow(2)).item<double>();
+  const double norm = std::sqrt(sq);
+  const double scale = max_norm / (norm + 1e-6);
+  if (scale < 1)
+    for (const auto& p : params)
+      if (p.grad().defined()) p.grad().mul_(scale);
+  return norm;
 }
 
 }  // namespace sims::learning

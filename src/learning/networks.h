@@ -148,6 +148,13 @@ class DiscriminatorImpl : public torch::nn::Module {
 };
 TORCH_MODULE(Discriminator);
 
+/// Σ x over all elements in an order that does not depend on the thread count (torch's own
+/// sum splits long reductions by thread); differentiable.
+torch::Tensor StableSum(const torch::Tensor& x);
+/// clip_grad_norm_ with a thread-count-independent norm: scales the gradients of `params` so
+/// their joint norm is at most max_norm (factor max_norm / (norm + 1e-6)); returns the norm.
+double ClipGradNorm(const std::vector<torch::Tensor>& params, double max_norm);
+
 /// Total width of a segment list.
 int64_t ObsWidth(const std::vector<sim::ObsSegment>& segments);
 

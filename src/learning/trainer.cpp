@@ -670,11 +670,10 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
       if (use_amp) StartReduce(disc_params, &disc_grads);
       FinishReduce(ac_params, disc_params);
       if (ppo.grad_norm > 0) {
-        torch::nn::utils::clip_grad_norm_(actor_params, ppo.grad_norm);
-        torch::nn::utils::clip_grad_norm_(critic_params, ppo.grad_norm);
+        ClipGradNorm(actor_params, ppo.grad_norm);
+        ClipGradNorm(critic_params, ppo.grad_norm);
       }
-      if (use_amp && cfg.amp.grad_norm > 0)
-        torch::nn::utils::clip_grad_norm_(disc_params, cfg.amp.grad_norm);
+      if (use_amp && cfg.amp.grad_norm > 0) ClipGradNorm(disc_params, cfg.amp.grad_norm);
       optim->step();
       // (While the actor is frozen its KL says nothing: the rate stays.)
       if (ppo.lr_schedule == "adaptive" && iteration >= ppo.actor_warmup_iterations)

@@ -42,6 +42,28 @@ TEST(NetworksTest, EncoderRoutesSegments) {
   EXPECT_EQ(ac->Value(torch::zeros({2, 24}), raw).sizes(), (std::vector<int64_t>{2}));
 }
 
+// Each feature has its own count, so a warm start can restart the task inputs alone; a file
+// written with one shared count spreads it over the features.
+TEST(NormalizerTest, PerFeatureCountsAndLegacyFiles) {
+  RunningMeanStd n(3);
+  n->Update(torch::randn({100, 3}));
+  n->CapCount(1, 2, 5.0);
+  const auto counts = n->named_buffers()["count"];
+  ASSERT_EQ(counts.numel(), 3);
+  EXPECT_NEAR(counts[0].item<double>(), 100.0, 1e-3);
+  EXPECT_EQ(counts[1].item<double>(), 5.0);
+  EXPECT_EQ(n->count(), 5.0);
+  // The next batch moves the capped features' means ~7× more than the uncapped one's.
+  const auto before = n->Denormalize(torch::zeros({1, 3}));
+  n->Update(torch::full({10, 3}, 10.0f));
+  const auto shift = n->Denormalize(torch::zeros({1, 3})) - before;
+  EXPECT_GT(shift[0][1].item<double>(), 5 * shift[0][0].item<double>());
+  RunningMeanStd legacy(3);
+  legacy->named_buffers()["count"].set_(torch::full({1}, 7.0, torch::kFloat64));
+  legacy->PerFeatureCount();
+  EXPECT_TRUE(torch::equal(legacy->named_buffers()["count"], torch::full({3}, 7.0, torch::kFloat64)));
+}
+
 // A warm start from another task's layout (walk → an object skill with a new "task" segment):
 // the new inputs start with zero weights and unit statistics, so the warm-started networks
 // act exactly as the source on the inputs they share, whatever the new inputs hold.
@@ -170,7 +192,7 @@ TEST(NormalizerTest, SoftenCapsTheCountAndRestartsConstantInputs) {
   for (int i = 0; i < 100; ++i) n->Update(x);
   EXPECT_EQ(n->Soften(10.0, 1e-6), 1);
   auto buffers = n->named_buffers();
-  EXPECT_DOUBLE_EQ(buffers["count"].item<double>(), 10.0);
+  EXPECT_TRUE(torch::equal(buffers["count"], torch::full({2}, 10.0, torch::kFloat64)));
   EXPECT_DOUBLE_EQ(buffers["mean"][1].item<double>(), 0.0);
   EXPECT_DOUBLE_EQ(buffers["var"][1].item<double>(), 1.0);
   EXPECT_NEAR(buffers["var"][0].item<double>(), 1.0 / 3.0, 1e-2) << "varied input kept";
