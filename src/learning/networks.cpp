@@ -21,8 +21,8 @@ torch::Tensor Activate(const torch::Tensor& x, const std::string& name) {
 // CPU's kernel (an Intel machine here differed only for K > 320, K % 32 != 0; an AMD EPYC for
 // every K tried). So no GEMM here is ever threaded: the rows of a batch go in fixed chunks of
 // kRowChunk, each chunk is one single-threaded GEMM (BLAS inside an active OpenMP region
-// runs on the calling thread), the chunks run in parallel, and the weight gradient, a sum over rows,
-// adds the chunks' partial products in chunk order. Every value is then computed by the same
+// runs on the calling thread), the chunks run in parallel, and the weight gradient, a sum over
+// rows, adds the chunks' partial products in chunk order. Every value is then computed by the same
 // operations at any thread count.
 constexpr int64_t kRowChunk = 128;
 
@@ -73,9 +73,8 @@ class ChunkedMatmul : public torch::autograd::Function<ChunkedMatmul> {
   static torch::Tensor forward(torch::autograd::AutogradContext* ctx, const torch::Tensor& a,
                                const torch::Tensor& b) {
     ctx->save_for_backward({a, b});
-    return ByRowChunks(a.size(0), [&](int64_t r0, int64_t n) {
-      return torch::mm(a.narrow(0, r0, n), b);
-    });
+    return ByRowChunks(a.size(0),
+                       [&](int64_t r0, int64_t n) { return torch::mm(a.narrow(0, r0, n), b); });
   }
   static torch::autograd::tensor_list backward(torch::autograd::AutogradContext* ctx,
                                                torch::autograd::tensor_list grads) {
@@ -88,9 +87,8 @@ class ChunkedMatmul : public torch::autograd::Function<ChunkedMatmul> {
     if (!torch::GradMode::is_enabled()) {
       // A plain backward: each chunk's products once, single-threaded, chunks in parallel.
       const auto bt = b.t();
-      const auto ga = ByRowChunks(rows, [&](int64_t r0, int64_t n) {
-        return torch::mm(g.narrow(0, r0, n), bt);
-      });
+      const auto ga = ByRowChunks(
+          rows, [&](int64_t r0, int64_t n) { return torch::mm(g.narrow(0, r0, n), bt); });
       ForChunks(static_cast<int64_t>(parts.size()), [&](int64_t c) {
         const int64_t r0 = c * kRowChunk, n = std::min(kRowChunk, rows - r0);
         parts[c] = torch::mm(a.narrow(0, r0, n).t(), g.narrow(0, r0, n));
@@ -167,9 +165,10 @@ std::vector<std::pair<int64_t, int64_t>> EncoderColumns(
   std::vector<std::pair<int64_t, int64_t>> out;
   int64_t at = 0;
   for (const auto& s : segments) {
-    const int64_t w = s.kind == sim::ObsSegment::Kind::kHeightmap
-                          ? (config.heightmap_hidden.empty() ? s.size : config.heightmap_hidden.back())
-                          : s.size;
+    const int64_t w =
+        s.kind == sim::ObsSegment::Kind::kHeightmap
+            ? (config.heightmap_hidden.empty() ? s.size : config.heightmap_hidden.back())
+            : s.size;
     out.emplace_back(at, w);
     at += w;
   }
@@ -187,8 +186,8 @@ int Matching(const std::vector<sim::ObsSegment>& list, const sim::ObsSegment& s)
 }  // namespace
 
 LayoutImport ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
-                                 const std::vector<sim::ObsSegment>& src_segments,
-                                 ActorCritic& dst, RunningMeanStd& dst_norm,
+                                 const std::vector<sim::ObsSegment>& src_segments, ActorCritic& dst,
+                                 RunningMeanStd& dst_norm,
                                  const std::vector<sim::ObsSegment>& dst_segments,
                                  const NetworkConfig& config, double quiet_var) {
   torch::NoGradGuard guard;
@@ -250,10 +249,9 @@ LayoutImport ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
     if (match[k] < 0 || !quiet[k].defined() || !quiet[k].any().item<bool>()) continue;
     const auto cols = torch::nonzero(quiet[k]).flatten();
     for (const char* net : {"actor", "critic"}) {
-      const std::string name =
-          is_map ? std::string(net) + "_encoder.heightmap" + std::to_string(map_index) +
-                       ".fc0.weight"
-                 : std::string(net) + ".fc0.weight";
+      const std::string name = is_map ? std::string(net) + "_encoder.heightmap" +
+                                            std::to_string(map_index) + ".fc0.weight"
+                                      : std::string(net) + ".fc0.weight";
       torch::Tensor* w = params.find(name);
       SIMS_CHECK(w != nullptr);
       const int64_t first = is_map ? 0 : dst_cols[k].first;
@@ -486,7 +484,8 @@ torch::Tensor StableSum(const torch::Tensor& x) {
   const int64_t n = flat.size(0);
   if (n <= kSlice) return flat.sum();
   std::vector<torch::Tensor> parts;
-  for (int64_t i = 0; i < n; i += kSlice) parts.push_back(flat.narrow(0, i, std::min(kSlice, n - i)).sum());
+  for (int64_t i = 0; i < n; i += kSlice)
+    parts.push_back(flat.narrow(0, i, std::min(kSlice, n - i)).sum());
   return torch::stack(parts).sum();
 }
 

@@ -181,8 +181,8 @@ struct LayoutImport {
 /// otherwise hit the normaliser's clip bound through weights trained on that noise. Throws
 /// sims::Error when a parameter cannot be matched.
 LayoutImport ImportAcrossLayouts(ActorCritic& src, RunningMeanStd& src_norm,
-                                 const std::vector<sim::ObsSegment>& src_segments,
-                                 ActorCritic& dst, RunningMeanStd& dst_norm,
+                                 const std::vector<sim::ObsSegment>& src_segments, ActorCritic& dst,
+                                 RunningMeanStd& dst_norm,
                                  const std::vector<sim::ObsSegment>& dst_segments,
                                  const NetworkConfig& config, double quiet_var = 0);
 

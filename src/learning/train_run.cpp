@@ -27,16 +27,40 @@ void TrainConfig::Validate() const {
 namespace {
 
 const std::vector<std::string>& CsvColumns() {
-  static const std::vector<std::string> cols = {
-      "iteration",         "samples",           "task_reward",       "style_reward",
-      "total_reward",      "episode_return",    "episode_length",    "episodes",
-      "success_rate",      "fall_rate",         "actor_loss",        "critic_loss",
-      "bounds_loss",       "disc_loss",         "grad_penalty",      "disc_acc_demo",
-      "disc_acc_agent",    "clip_fraction",     "env_samples_per_s", "train_samples_per_s",
-      "update_gflops",     "iteration_seconds", "samples_per_s",     "env_seconds",
-      "inference_seconds", "disc_seconds",      "ppo_seconds",       "logging_seconds",
-      "force_end_rate",    "reference_start_share", "success_rate_reference",
-      "success_rate_default", "kl", "learning_rate"};
+  static const std::vector<std::string> cols = {"iteration",
+                                                "samples",
+                                                "task_reward",
+                                                "style_reward",
+                                                "total_reward",
+                                                "episode_return",
+                                                "episode_length",
+                                                "episodes",
+                                                "success_rate",
+                                                "fall_rate",
+                                                "actor_loss",
+                                                "critic_loss",
+                                                "bounds_loss",
+                                                "disc_loss",
+                                                "grad_penalty",
+                                                "disc_acc_demo",
+                                                "disc_acc_agent",
+                                                "clip_fraction",
+                                                "env_samples_per_s",
+                                                "train_samples_per_s",
+                                                "update_gflops",
+                                                "iteration_seconds",
+                                                "samples_per_s",
+                                                "env_seconds",
+                                                "inference_seconds",
+                                                "disc_seconds",
+                                                "ppo_seconds",
+                                                "logging_seconds",
+                                                "force_end_rate",
+                                                "reference_start_share",
+                                                "success_rate_reference",
+                                                "success_rate_default",
+                                                "kl",
+                                                "learning_rate"};
   return cols;
 }
 

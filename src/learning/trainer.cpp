@@ -568,8 +568,7 @@ void Trainer::Impl::PpoLoss(const Batch& b, const torch::Tensor& idx, double sha
   // During the actor warm-up only the critic learns: a fresh value function (and value
   // normaliser) gives a warm-started actor meaningless advantages at first.
   const double actor_weight = iteration < ppo.actor_warmup_iterations ? 0.0 : 1.0;
-  const auto loss =
-      actor_weight * (actor + ppo.bounds_coef * bounds) + ppo.critic_coef * critic;
+  const auto loss = actor_weight * (actor + ppo.bounds_coef * bounds) + ppo.critic_coef * critic;
   (world == 1 ? loss : loss * share).backward();
   u->actor += actor.item<double>() * share;
   u->critic += critic.item<double>() * share;
@@ -963,9 +962,10 @@ void Trainer::LoadCheckpoint(const std::filesystem::path& path) {
       m.replay->styles().copy_(ReadTensor(archive, "replay_styles"));
       m.replay->set_size(ReadTensor(archive, "replay_size")[0].item<int64_t>());
     } else if (m.use_amp) {
-      spdlog::info("{}: a compact checkpoint; the AMP replay buffer refills from the next "
-                   "rollouts",
-                   path.string());
+      spdlog::info(
+          "{}: a compact checkpoint; the AMP replay buffer refills from the next "
+          "rollouts",
+          path.string());
     }
     // Checkpoints from before per-environment noise streams keep the fresh ones.
     torch::Tensor t;
@@ -1032,7 +1032,8 @@ void Trainer::InitFromPolicy(const std::filesystem::path& path) {
       segs.push_back(seg);
     }
     if (offset != meta.at("obs_dim").get<int64_t>())
-      ThrowInputError(path.string(), "segments", "segments covering obs_dim", std::to_string(offset));
+      ThrowInputError(path.string(), "segments", "segments covering obs_dim",
+                      std::to_string(offset));
     auto same = [](const sim::ObsSegment& a, const sim::ObsSegment& b) {
       return a.name == b.name && a.kind == b.kind && a.offset == b.offset && a.size == b.size;
     };

@@ -556,16 +556,16 @@ MotionClip ComposeAfter(const MotionClip& lead, const MotionClip& clip, double b
     const Eigen::Vector3d d(f.root_pos.x() - last.root_pos.x(), f.root_pos.y() - last.root_pos.y(),
                             0);
     const Eigen::Vector3d p = dq * d;
-    f.root_pos = Eigen::Vector3d(first.root_pos.x() + p.x(), first.root_pos.y() + p.y(),
-                                 f.root_pos.z());
+    f.root_pos =
+        Eigen::Vector3d(first.root_pos.x() + p.x(), first.root_pos.y() + p.y(), f.root_pos.z());
     f.root_rot = (dq * f.root_rot).normalized();
     return f;
   };
   std::vector<MotionFrame> frames;
   for (int i = 0; i + 1 < lead.num_frames(); ++i) frames.push_back(place(lead.frame(i)));
   const MotionFrame from = place(last);
-  const int blend = std::min(clip.num_frames(), static_cast<int>(std::lround(blend_seconds *
-                                                                            clip.fps())));
+  const int blend =
+      std::min(clip.num_frames(), static_cast<int>(std::lround(blend_seconds * clip.fps())));
   for (int k = 0; k < clip.num_frames(); ++k) {
     MotionFrame f = clip.frame(k);
     if (k < blend) {

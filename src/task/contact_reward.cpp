@@ -11,8 +11,8 @@ double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
                      const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
                      double target_speed, double contact_sq_sum) {
   const double r_near = std::exp(-10.0 * contact_sq_sum);
-  return kNearWeight * r_near + (1.0 - kNearWeight) * FarReward(anchor, root, velocity, facing,
-                                                                target_speed);
+  return kNearWeight * r_near +
+         (1.0 - kNearWeight) * FarReward(anchor, root, velocity, facing, target_speed);
 }
 
 double FarReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,

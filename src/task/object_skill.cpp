@@ -332,8 +332,8 @@ bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
 
 Eigen::Vector2d ObjectSkill::SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const {
   const auto& o = config_.object;
-  const double far = o.spawn_min_distance + level_[env_id] * (o.spawn_max_distance -
-                                                              o.spawn_min_distance);
+  const double far =
+      o.spawn_min_distance + level_[env_id] * (o.spawn_max_distance - o.spawn_min_distance);
   const double half_arc = 0.5 * o.spawn_arc_deg * M_PI / 180.0;
   Eigen::Vector2d p = g.center;
   for (int attempt = 0; attempt < 32; ++attempt) {
@@ -407,8 +407,7 @@ int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const Object
   return fitting[k];
 }
 
-bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng,
-                                    sim::InitialState* init) {
+bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::InitialState* init) {
   ClipPlacement placement;
   const int clip =
       ChooseFurnitureClip(reference_clips_, geometry(env_id), lateral, rng, &placement);

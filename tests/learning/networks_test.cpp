@@ -61,7 +61,8 @@ TEST(NormalizerTest, PerFeatureCountsAndLegacyFiles) {
   RunningMeanStd legacy(3);
   legacy->named_buffers()["count"].set_(torch::full({1}, 7.0, torch::kFloat64));
   legacy->PerFeatureCount();
-  EXPECT_TRUE(torch::equal(legacy->named_buffers()["count"], torch::full({3}, 7.0, torch::kFloat64)));
+  EXPECT_TRUE(
+      torch::equal(legacy->named_buffers()["count"], torch::full({3}, 7.0, torch::kFloat64)));
 }
 
 // A warm start from another task's layout (walk → an object skill with a new "task" segment):
@@ -101,8 +102,8 @@ TEST(NetworksTest, ImportAcrossLayoutsKeepsTheSourcePolicy) {
   EXPECT_TRUE(torch::allclose(n_dst.slice(1, 0, 9), n_src.slice(1, 0, 9)));
   EXPECT_TRUE(torch::allclose(n_dst.slice(1, 15, 31), n_src.slice(1, 9, 25)));
   // New inputs: mean 0, variance 1 (then clamped at ±5).
-  EXPECT_TRUE(torch::allclose(n_dst.slice(1, 9, 15), torch::clamp(task / std::sqrt(1 + 1e-5), -5, 5),
-                              1e-4));
+  EXPECT_TRUE(torch::allclose(n_dst.slice(1, 9, 15),
+                              torch::clamp(task / std::sqrt(1 + 1e-5), -5, 5), 1e-4));
   EXPECT_TRUE(torch::allclose(dst->Mean(n_dst, raw_dst), src->Mean(n_src, raw_src), 1e-5, 1e-5));
   EXPECT_TRUE(torch::allclose(dst->Value(n_dst, raw_dst), src->Value(n_src, raw_src), 1e-5, 1e-5));
   // Quiet inputs: the source's contact-goal columns barely moved (variance 1e-6) and its

@@ -144,9 +144,8 @@ TEST(TrainerTest, AdaptiveLearningRateFollowsTheKl) {
   EXPECT_LT(resumed.RunIteration().learning_rate, s.learning_rate / std::pow(1.5, 7));
   c.ppo.kl_threshold = 1e3;
   Trainer grow = MakeTrainer(c);
-  EXPECT_NEAR(grow.RunIteration().learning_rate, std::min(c.ppo.learning_rate * std::pow(1.5, 10),
-                                                          1e-2),
-              1e-12);
+  EXPECT_NEAR(grow.RunIteration().learning_rate,
+              std::min(c.ppo.learning_rate * std::pow(1.5, 10), 1e-2), 1e-12);
   c.ppo.lr_schedule = "constant";
   EXPECT_EQ(MakeTrainer(c).RunIteration().learning_rate, c.ppo.learning_rate);
 }

@@ -75,8 +75,9 @@ TEST(LieSkillTest, GoalsRewardAndThreshold) {
   EXPECT_EQ(lie->goal_mask(0), (1u << sim::kCjPelvis) | (1u << sim::kCjHead));
   // The pelvis target: the mattress centre, 0.11 m above its top (the lie clips' pelvis).
   const ObjectGeometry& g = lie->geometry(0);
-  const Eigen::Vector3d target = g.ToWorld(Eigen::Vector3d(
-      g.mattress_local.center().x(), g.mattress_local.center().y(), g.mattress_local.max.z() + 0.11));
+  const Eigen::Vector3d target =
+      g.ToWorld(Eigen::Vector3d(g.mattress_local.center().x(), g.mattress_local.center().y(),
+                                g.mattress_local.max.z() + 0.11));
   EXPECT_NEAR((lie->target(0) - target).norm(), 0, 1e-9);
   // The anchor stands beside the bed's long side (the episode's side).
   const Eigen::Vector3d a_O =

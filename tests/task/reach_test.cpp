@@ -81,8 +81,8 @@ TEST(ReachSkillTest, RewardAndThreshold) {
       g.X_WO.inverse() * Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0);
   EXPECT_NEAR(a_O.x(), g.local.max.x() + kStandDistance, 1e-9);
   EXPECT_NEAR(a_O.y(), (g.X_WO.inverse() * front).y(), 1e-9);
-  s.env->SetState(0, PoseAt(Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0.89),
-                            g.yaw + M_PI));
+  s.env->SetState(
+      0, PoseAt(Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0.89), g.yaw + M_PI));
   const Eigen::Vector3d hand = sim::ContactJointPosition(s.env->bodies(0), sim::kCjRightHand);
   for (double d : {0.15, 0.25}) {
     reach->SetTarget(0, sim::kCjRightHand, hand + Eigen::Vector3d(0, 0, d));
@@ -90,8 +90,7 @@ TEST(ReachSkillTest, RewardAndThreshold) {
     EXPECT_EQ(r.success, d < 0.2);
     EXPECT_NEAR(reach->goal_error(0), d, 1e-9);
     // Within √0.5 m of the anchor: r_far = 1.
-    ASSERT_LT((reach->anchor(0) - s.env->pose(0).root_pos.head<2>()).squaredNorm(),
-              kFarDistanceSq);
+    ASSERT_LT((reach->anchor(0) - s.env->pose(0).root_pos.head<2>()).squaredNorm(), kFarDistanceSq);
     EXPECT_NEAR(r.reward, 0.7 * std::exp(-10 * d * d) + 0.3, 1e-5);
   }
 }

@@ -1,7 +1,7 @@
 #include "sims/task/sit/sit.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -227,9 +227,9 @@ TEST(SitSkillTest, SpawnCurriculumWidensWithSuccess) {
     s.env->ResetEnv(0);
     const ObjectGeometry& g = sit->geometry(0);
     const double d = (s.env->pose(0).root_pos.head<2>() - g.center).norm() - g.radius;
-    const double far = c.object.spawn_min_distance +
-                       sit->spawn_level(0) *
-                           (c.object.spawn_max_distance - c.object.spawn_min_distance);
+    const double far =
+        c.object.spawn_min_distance +
+        sit->spawn_level(0) * (c.object.spawn_max_distance - c.object.spawn_min_distance);
     EXPECT_GE(d, c.object.spawn_min_distance - 1e-9);
     EXPECT_LE(d, far + 1e-9);
   }
@@ -270,8 +270,7 @@ TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
       delta.normalized().dot(Eigen::Vector2d(std::cos(g.yaw + M_PI), std::sin(g.yaw + M_PI)));
   const double r_far =
       0.5 * std::exp(-0.5 * delta.squaredNorm()) + 0.1 * std::max(0.0, facing);  // standing
-  EXPECT_NEAR(r.reward, 0.7 * std::exp(-10 * (target - pelvis).squaredNorm()) + 0.3 * r_far,
-              1e-5);
+  EXPECT_NEAR(r.reward, 0.7 * std::exp(-10 * (target - pelvis).squaredNorm()) + 0.3 * r_far, 1e-5);
   EXPECT_FALSE(r.success);
   // Behind the chair the anchor is still in front: the far term points around the object.
   const Eigen::Vector3d behind = g.ToWorld(Eigen::Vector3d(g.local.min.x() - 0.3, 0, 0.89));

@@ -16,39 +16,39 @@ namespace sims::learning {
 
 /// What one iteration (rollout + update) measured.
 struct IterationStats {
-  int64_t iteration = 0;           ///< Iterations completed (after this one).
-  int64_t samples = 0;             ///< Environment transitions so far.
-  double task_reward = 0;          ///< Mean task reward per step.
-  double style_reward = 0;         ///< Mean style reward per step.
-  double total_reward = 0;         ///< Mean combined reward per step.
-  double episode_return = 0;       ///< Mean combined return of episodes ended this iteration.
-  double episode_length = 0;       ///< Mean length (steps) of those episodes.
-  int64_t episodes = 0;            ///< Episodes ended this iteration.
-  double success_rate = 0;         ///< Fraction of those episodes the task completed.
-  double fall_rate = 0;            ///< Fraction of those episodes that ended by a fall/blow-up.
-  double force_end_rate = 0;       ///< Fraction the task terminated (e.g. contact force).
+  int64_t iteration = 0;              ///< Iterations completed (after this one).
+  int64_t samples = 0;                ///< Environment transitions so far.
+  double task_reward = 0;             ///< Mean task reward per step.
+  double style_reward = 0;            ///< Mean style reward per step.
+  double total_reward = 0;            ///< Mean combined reward per step.
+  double episode_return = 0;          ///< Mean combined return of episodes ended this iteration.
+  double episode_length = 0;          ///< Mean length (steps) of those episodes.
+  int64_t episodes = 0;               ///< Episodes ended this iteration.
+  double success_rate = 0;            ///< Fraction of those episodes the task completed.
+  double fall_rate = 0;               ///< Fraction of those episodes that ended by a fall/blow-up.
+  double force_end_rate = 0;          ///< Fraction the task terminated (e.g. contact force).
   double reference_start_share = 0;   ///< Fraction that began from a reference state.
   double success_rate_reference = 0;  ///< success_rate of reference-start episodes (NaN: none).
   double success_rate_default = 0;    ///< success_rate of default-start episodes (NaN: none).
-  double actor_loss = 0;           ///< Mean clipped surrogate loss.
-  double critic_loss = 0;          ///< Mean value loss.
-  double bounds_loss = 0;          ///< Mean bounds loss.
-  double disc_loss = 0;            ///< Mean discriminator classification loss.
-  double grad_penalty = 0;         ///< Mean gradient penalty.
-  double disc_acc_demo = 0;        ///< Discriminator accuracy on demo windows.
-  double disc_acc_agent = 0;       ///< Discriminator accuracy on policy/replay windows.
-  double clip_fraction = 0;        ///< Fraction of clipped ratios.
-  double kl = 0;                   ///< Mean KL(old ‖ new) per minibatch step.
-  double learning_rate = 0;        ///< The learning rate after this update.
-  double env_samples_per_s = 0;    ///< Collection throughput (incl. policy inference).
-  double train_samples_per_s = 0;  ///< Update throughput (samples × epochs / s).
-  double update_gflop = 0;         ///< Estimated GFLOP spent in the update.
-  double update_seconds = 0;       ///< Time spent in the update (PPO and discriminator).
-  double env_seconds = 0;          ///< Rollout time inside VecEnv::Step.
-  double inference_seconds = 0;    ///< Rollout time outside it (policy, value, buffers).
-  double disc_seconds = 0;         ///< Style rewards + discriminator loss forward/backward.
-  double ppo_seconds = 0;          ///< Advantages, PPO forward/backward, optimiser steps.
-  double iteration_seconds = 0;    ///< Wall time of the iteration.
+  double actor_loss = 0;              ///< Mean clipped surrogate loss.
+  double critic_loss = 0;             ///< Mean value loss.
+  double bounds_loss = 0;             ///< Mean bounds loss.
+  double disc_loss = 0;               ///< Mean discriminator classification loss.
+  double grad_penalty = 0;            ///< Mean gradient penalty.
+  double disc_acc_demo = 0;           ///< Discriminator accuracy on demo windows.
+  double disc_acc_agent = 0;          ///< Discriminator accuracy on policy/replay windows.
+  double clip_fraction = 0;           ///< Fraction of clipped ratios.
+  double kl = 0;                      ///< Mean KL(old ‖ new) per minibatch step.
+  double learning_rate = 0;           ///< The learning rate after this update.
+  double env_samples_per_s = 0;       ///< Collection throughput (incl. policy inference).
+  double train_samples_per_s = 0;     ///< Update throughput (samples × epochs / s).
+  double update_gflop = 0;            ///< Estimated GFLOP spent in the update.
+  double update_seconds = 0;          ///< Time spent in the update (PPO and discriminator).
+  double env_seconds = 0;             ///< Rollout time inside VecEnv::Step.
+  double inference_seconds = 0;       ///< Rollout time outside it (policy, value, buffers).
+  double disc_seconds = 0;            ///< Style rewards + discriminator loss forward/backward.
+  double ppo_seconds = 0;             ///< Advantages, PPO forward/backward, optimiser steps.
+  double iteration_seconds = 0;       ///< Wall time of the iteration.
 };
 
 /// PPO + AMP trainer.

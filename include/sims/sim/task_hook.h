@@ -33,8 +33,8 @@ struct InitialState {
 
 /// What a task reports after each control step of one env.
 struct TaskStepResult {
-  float reward = 0.0f;     ///< Task reward r_task.
-  bool success = false;    ///< Success condition holds at this step.
+  float reward = 0.0f;   ///< Task reward r_task.
+  bool success = false;  ///< Success condition holds at this step.
   /// The task is accomplished: success has held as long as the skill requires (the figure
   /// training logs and evaluation count as a successful episode).
   bool completed = false;

@@ -201,7 +201,7 @@ class ObjectSkill : public Skill {
   std::vector<double> error_;
   std::vector<Eigen::Vector3d> target_W_;
   std::vector<Eigen::Vector2d> anchor_W_;
-  std::vector<double> level_;                  // spawn-curriculum level
+  std::vector<double> level_;                 // spawn-curriculum level
   std::vector<uint8_t> started_, reference_;  // an episode ran; it began from a clip
   std::vector<double> pre_contact_;           // per library clip (−1: not a reference clip)
 };

@@ -75,8 +75,8 @@ void ReachSkill::SetTarget(int i, int hand_joint, const Eigen::Vector3d& target)
   // The far anchor: in front of the object's front face, level with the target.
   const ObjectGeometry& g = geometry(i);
   const Eigen::Vector3d l = g.X_WO.inverse() * target;
-  const Eigen::Vector3d anchor = g.ToWorld(Eigen::Vector3d(g.local.max.x() + kStandDistance,
-                                                           l.y(), 0.0));
+  const Eigen::Vector3d anchor =
+      g.ToWorld(Eigen::Vector3d(g.local.max.x() + kStandDistance, l.y(), 0.0));
   SetEpisodeTarget(i, target, anchor.head<2>());
   hold_[i] = 0;
   ClearGoals(i);

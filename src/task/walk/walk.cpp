@@ -109,8 +109,8 @@ double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& r
     const double v = dir.dot(velocity);
     const double speed_err = target_speed - v;
     const double r_speed = v > 0 ? std::exp(-2.0 * speed_err * speed_err) : 0.0;
-    const double r_far = 0.6 * std::exp(-0.5 * d2) + 0.2 * r_speed +
-                         0.2 * std::max(0.0, dir.dot(facing));
+    const double r_far =
+        0.6 * std::exp(-0.5 * d2) + 0.2 * r_speed + 0.2 * std::max(0.0, dir.dot(facing));
     return 0.4 * r_near + 0.5 * r_far;
   }
   const double r_still = std::exp(-2.0 * (velocity - prev_velocity).squaredNorm());
