@@ -845,6 +845,21 @@ void ReadPolicyFile(
     ThrowInputError(path.string(), "", "a policy file written by ExportPolicy", e.what());
   }
 }
+// The observation layout a policy file's metadata records (ExportPolicy).
+std::vector<sim::ObsSegment> SegmentsOf(const nlohmann::json& meta) {
+  std::vector<sim::ObsSegment> out;
+  for (const auto& j : meta.at("segments")) {
+    sim::ObsSegment seg;
+    seg.name = j.at("name").get<std::string>();
+    seg.kind = static_cast<sim::ObsSegment::Kind>(j.at("kind").get<int>());
+    seg.offset = j.at("offset").get<int>();
+    seg.size = j.at("size").get<int>();
+    seg.rows = j.at("rows").get<int>();
+    seg.cols = j.at("cols").get<int>();
+    out.push_back(seg);
+  }
+  return out;
+}
 // The weights a policy file carries: actor-critic and observation normaliser.
 void LoadPolicyWeights(torch::serialize::InputArchive& archive, ActorCritic& ac,
                        RunningMeanStd& obs_norm) {
@@ -1018,19 +1033,8 @@ void Trainer::InitFromPolicy(const std::filesystem::path& path) {
     if (meta.at("network") != ConfigToJson(m.cfg.network))
       ThrowInputError(path.string(), "network", "the same network sizes as this run",
                       meta.at("network").dump());
-    std::vector<sim::ObsSegment> segs;
-    int64_t offset = 0;
-    for (const auto& j : meta.at("segments")) {
-      sim::ObsSegment seg;
-      seg.name = j.at("name").get<std::string>();
-      seg.kind = static_cast<sim::ObsSegment::Kind>(j.at("kind").get<int>());
-      seg.offset = j.at("offset").get<int>();
-      seg.size = j.at("size").get<int>();
-      seg.rows = j.at("rows").get<int>();
-      seg.cols = j.at("cols").get<int>();
-      offset = std::max<int64_t>(offset, seg.offset + seg.size);
-      segs.push_back(seg);
-    }
+    const std::vector<sim::ObsSegment> segs = SegmentsOf(meta);
+    const int64_t offset = ObsWidth(segs);
     if (offset != meta.at("obs_dim").get<int64_t>())
       ThrowInputError(path.string(), "segments", "segments covering obs_dim",
                       std::to_string(offset));
@@ -1127,17 +1131,7 @@ Policy::Policy(const std::filesystem::path& path) : impl_(std::make_unique<Impl>
   ReadPolicyFile(path, [&](torch::serialize::InputArchive& archive, const std::string& metadata) {
     impl_->metadata = metadata;
     const auto meta = nlohmann::json::parse(impl_->metadata);
-    std::vector<sim::ObsSegment> segments;
-    for (const auto& s : meta.at("segments")) {
-      sim::ObsSegment seg;
-      seg.name = s.at("name").get<std::string>();
-      seg.kind = static_cast<sim::ObsSegment::Kind>(s.at("kind").get<int>());
-      seg.offset = s.at("offset").get<int>();
-      seg.size = s.at("size").get<int>();
-      seg.rows = s.at("rows").get<int>();
-      seg.cols = s.at("cols").get<int>();
-      segments.push_back(seg);
-    }
+    const std::vector<sim::ObsSegment> segments = SegmentsOf(meta);
     const auto net = ConfigFromJson<NetworkConfig>(meta.at("network"), path.string());
     impl_->obs_dim = meta.at("obs_dim").get<int>();
     impl_->action_dim = meta.at("action_dim").get<int>();
