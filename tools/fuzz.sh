@@ -10,7 +10,7 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${SIMS_FUZZ_BUILD_DIR:-$ROOT/build-fuzz}"
-FUZZERS=(bvh script plan scene_plan front3d mesh_obj mesh_ply config)
+FUZZERS=(bvh script plan scene_plan front3d mesh_obj mesh_ply config env_state checkpoint)
 
 usage() { echo "usage: tools/fuzz.sh --list | NAME SECONDS" >&2; exit 2; }
 [ $# -ge 1 ] || usage
@@ -49,6 +49,13 @@ case "$NAME" in
   mesh_obj) seed $(find "$T/scene" -name '*.obj' | sort) ;;
   mesh_ply) seed $(find "$T/scene" -name '*.ply' | sort) ;;
   config) seed $(find "$ROOT/configs" -name '*.json' -size -64k | sort) ;;
+  # The harness holds valid snapshots of its environments; the seeds pick each environment
+  # (byte 0) in each mode (byte 1: raw, patch at a 4-byte offset, cut).
+  env_state)
+    for e in 0 1 2 3 4 5; do for m in 0 1 2; do
+      printf "\\x0$e\\x0$m\\x10\\x00\\x00\\x00\\xff\\xff" >"$SEEDS/env${e}_mode${m}"
+    done; done ;;
+  checkpoint) seed "$ROOT"/assets/policies/*/policy.pt ;;
 esac
 # Earlier regressions stay in the corpus.
 [ -d "$T/fuzz/$NAME" ] && cp "$T/fuzz/$NAME"/* "$SEEDS/" 2>/dev/null || true

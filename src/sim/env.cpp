@@ -363,6 +363,8 @@ class ByteReader {
     return v;
   }
   bool done() const { return pos_ == in_.size(); }
+  /// Bytes not read yet.
+  size_t left() const { return in_.size() - pos_; }
 
  private:
   const std::string& in_;
@@ -405,6 +407,18 @@ std::string BatchedEnv::SaveState() const {
 }
 
 void BatchedEnv::LoadState(const std::string& state) {
+  // A snapshot is read and applied env by env; one rejected part way through must not leave
+  // the environment half-restored, so the current state is put back.
+  const std::string before = SaveState();
+  try {
+    ApplyState(state);
+  } catch (const Error&) {
+    ApplyState(before);
+    throw;
+  }
+}
+
+void BatchedEnv::ApplyState(const std::string& state) {
   const mjModel* m = humanoid_->model();
   ByteReader r(state);
   const auto expect = [&](auto value, const char* field) {
@@ -439,7 +453,11 @@ void BatchedEnv::LoadState(const std::string& state) {
     r.Get(d->act, m->na);
     r.Get(d->ctrl, m->nu);
     r.Get(d->qacc_warmstart, m->nv);
-    std::vector<double> task_state(r.Get<size_t>());
+    const size_t task_values = r.Get<size_t>();
+    if (task_values > r.left() / sizeof(double))
+      ThrowInputError("environment state", "task_state", "a snapshot of this environment",
+                      "a count of " + std::to_string(task_values) + " values past its end");
+    std::vector<double> task_state(task_values);
     r.Get(task_state.data(), task_state.size());
     if (task_) task_->LoadEnvState(i, task_state);
     // The env always rests after mj_step1 (or mj_forward); replaying that pass from the

@@ -439,7 +439,7 @@ sim::TaskStepResult ObjectSkill::Finish(const sim::EnvView& view, double reward,
 }
 
 void ObjectSkill::SaveTaskState(int, std::vector<double>*) const {}
-size_t ObjectSkill::LoadTaskState(int, const double*, size_t) { return 0; }
+void ObjectSkill::LoadTaskState(int, StateReader*) {}
 
 std::vector<double> ObjectSkill::SaveSkillState(int env_id) const {
   const Eigen::Vector3d& t = target_W_[env_id];
@@ -460,25 +460,19 @@ std::vector<double> ObjectSkill::SaveSkillState(int env_id) const {
 }
 
 void ObjectSkill::LoadSkillState(int env_id, const double* d, size_t size) {
-  constexpr size_t kBase = 11;
-  if (size < kBase)
-    ThrowInputError(name() + " skill state", "size", "at least 11 values", std::to_string(size));
-  const int k = static_cast<int>(d[0]);
-  if (k < 0 || k >= static_cast<int>(objects_.size()))
-    ThrowInputError(name() + " skill state", "object", "an object of this scene",
-                    std::to_string(k));
-  object_[env_id] = k;
-  hold_[env_id] = static_cast<int>(d[1]);
-  error_[env_id] = d[2];
-  target_W_[env_id] = Eigen::Vector3d(d[3], d[4], d[5]);
-  anchor_W_[env_id] = Eigen::Vector2d(d[6], d[7]);
-  level_[env_id] = d[8];
-  started_[env_id] = d[9] != 0;
-  reference_[env_id] = d[10] != 0;
-  const size_t used = LoadTaskState(env_id, d + kBase, size - kBase);
-  if (used != size - kBase)
-    ThrowInputError(name() + " skill state", "size", "a snapshot of this skill",
-                    std::to_string(size) + " values");
+  StateReader r(name() + " skill state", d, size);
+  object_[env_id] =
+      static_cast<int>(r.Int("object", 0, static_cast<long long>(objects_.size()) - 1));
+  hold_[env_id] = static_cast<int>(r.Int("hold", 0, std::numeric_limits<int>::max()));
+  error_[env_id] = r.Real("error");
+  for (int k = 0; k < 3; ++k) target_W_[env_id][k] = r.Real("target");
+  for (int k = 0; k < 2; ++k) anchor_W_[env_id][k] = r.Real("anchor");
+  level_[env_id] = r.Real("level");
+  started_[env_id] = r.Flag("started");
+  reference_[env_id] = r.Flag("reference");
+  StateReader task(name() + " skill state", d + r.used(), r.left());
+  LoadTaskState(env_id, &task);
+  task.ExpectEnd();
 }
 
 }  // namespace sims::task

@@ -11,6 +11,7 @@
 #include "sims/task/lie/lie.h"
 #include "sims/task/reach/reach.h"
 #include "sims/task/sit/sit.h"
+#include "sims/task/state_reader.h"
 #include "sims/task/unified/unified.h"
 #include "sims/task/walk/walk.h"
 
@@ -157,15 +158,13 @@ std::vector<double> Skill::SaveEnvState(int env_id) const {
 }
 
 void Skill::LoadEnvState(int env_id, const std::vector<double>& s) {
-  const size_t base = sim::kNumContactJoints * 3 + 2;
-  if (s.size() < base)
-    ThrowInputError("skill state", name(), "a snapshot of this skill", "too little data");
-  size_t p = 0;
+  StateReader r(name() + " skill state", s.data(), s.size());
   for (int j = 0; j < sim::kNumContactJoints; ++j)
-    for (int k = 0; k < 3; ++k) goals_[env_id][j][k] = s[p++];
-  mask_[env_id] = static_cast<uint32_t>(s[p++]);
-  style_[env_id] = static_cast<int>(s[p++]);
-  LoadSkillState(env_id, s.data() + p, s.size() - p);
+    for (int k = 0; k < 3; ++k) goals_[env_id][j][k] = r.Real("goal");
+  mask_[env_id] = static_cast<uint32_t>(r.Int("mask", 0, (1ll << sim::kNumContactJoints) - 1));
+  const long long clips = context_.motions ? context_.motions->num_clips() : 0;
+  style_[env_id] = static_cast<int>(r.Int("style", -1, clips - 1));
+  LoadSkillState(env_id, s.data() + r.used(), r.left());
 }
 
 std::vector<double> Skill::SaveSkillState(int) const { return {}; }

@@ -84,10 +84,8 @@ void SurfaceSkill::SaveTaskState(int env_id, std::vector<double>* out) const {
   out->push_back(lateral_[env_id]);
 }
 
-size_t SurfaceSkill::LoadTaskState(int env_id, const double* data, size_t size) {
-  if (size < 1) return 0;
-  lateral_[env_id] = data[0];
-  return 1;
+void SurfaceSkill::LoadTaskState(int env_id, StateReader* r) {
+  lateral_[env_id] = r->Real("lateral");
 }
 
 }  // namespace sims::task

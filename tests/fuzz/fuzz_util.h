@@ -19,15 +19,20 @@ inline std::string Text(const uint8_t* data, size_t size) {
   return std::string(reinterpret_cast<const char*>(data), size);
 }
 
-/// Writes the input to <tmp>/sims_fuzz_<pid>/<name> (overwritten each call) and returns it.
-inline std::filesystem::path ScratchFile(const uint8_t* data, size_t size,
-                                         const std::string& name) {
+/// <tmp>/sims_fuzz_<pid>: this process's scratch directory.
+inline const std::filesystem::path& ScratchDir() {
   static const std::filesystem::path dir = [] {
     auto d = std::filesystem::temp_directory_path() / ("sims_fuzz_" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     return d;
   }();
-  const auto path = dir / name;
+  return dir;
+}
+
+/// Writes the input to ScratchDir()/<name> (overwritten each call) and returns it.
+inline std::filesystem::path ScratchFile(const uint8_t* data, size_t size,
+                                         const std::string& name) {
+  const auto path = ScratchDir() / name;
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   return path;

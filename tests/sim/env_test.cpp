@@ -260,5 +260,31 @@ TEST(EnvStateTest, SaveLoadContinuesBitExactly) {
   EXPECT_THROW(b.LoadState(snapshot.substr(0, snapshot.size() / 2)), Error);
 }
 
+// Fuzzer findings (tools/fuzz.sh env_state): a snapshot rejected part way through left the
+// first envs overwritten, and a task-state count past the end of the data asked for that many
+// doubles (std::length_error / bad_alloc instead of an input error).
+TEST(EnvStateTest, RejectedSnapshotLeavesTheEnvAsItWas) {
+  EnvConfig c = SmallConfig(3, 2);
+  BatchedEnv a(MakeHumanoid(), c);
+  Rng rng(9);
+  for (int t = 0; t < 10; ++t) a.Step(RandomActions(rng, 3, 0.4).data());
+  const std::string snapshot = a.SaveState();
+  EnvConfig other = c;
+  other.seed = 77;
+  BatchedEnv b(MakeHumanoid(), other);
+  const std::string before = b.SaveState();
+  // The last env is cut short: the first two were already applied when the error comes.
+  EXPECT_THROW(b.LoadState(snapshot.substr(0, snapshot.size() - 4)), Error);
+  EXPECT_EQ(b.SaveState(), before);
+  // Without a task each env ends with its task-state count (0); claim 2^60 values.
+  std::string huge = snapshot;
+  const uint64_t count = uint64_t{1} << 60;
+  std::memcpy(huge.data() + huge.size() - sizeof(count), &count, sizeof(count));
+  EXPECT_THROW(b.LoadState(huge), Error);
+  EXPECT_EQ(b.SaveState(), before);
+  b.LoadState(snapshot);
+  EXPECT_EQ(b.SaveState(), snapshot);
+}
+
 }  // namespace
 }  // namespace sims::sim

@@ -346,6 +346,36 @@ TEST(SitSkillTest, SnapshotRestoresTheEpisode) {
                            sizeof(float) * 3 * s.env->obs_dim()));
 }
 
+// Fuzzer findings (tools/fuzz.sh env_state): skill-state values from a checkpoint were cast
+// unchecked (a style index past the clips, a NaN object index: UBSan float-cast-overflow).
+TEST(SitSkillTest, SnapshotValuesAreChecked) {
+  SkillConfig c = SitConfig();
+  auto s = MakeSkillEnv(c, 1);
+  auto& sit = dynamic_cast<SitSkill&>(*s.setup.skill);
+  const std::vector<double> good = sit.SaveEnvState(0);
+  const size_t base = sim::kNumContactJoints * 3;  // goals, then mask, style, object, hold, ...
+  const auto rejects = [&](size_t at, double value) {
+    std::vector<double> bad = good;
+    bad.at(at) = value;
+    EXPECT_THROW(sit.LoadEnvState(0, bad), Error) << "value " << value << " at " << at;
+  };
+  rejects(base, std::nan(""));                                   // mask
+  rejects(base, 1 << sim::kNumContactJoints);                    // mask: an unknown joint
+  rejects(base + 1, s.setup.context.motions->num_clips());       // style: past the clips
+  rejects(base + 1, 0.5);                                        // style: not an index
+  rejects(base + 2, std::nan(""));                               // object
+  rejects(base + 2, static_cast<double>(sit.objects().size()));  // object: past the scene
+  rejects(base + 3, -1);                                         // hold
+  rejects(base + 11, 2);                                         // started: not a flag
+  rejects(good.size() - 1, std::nan(""));                        // lateral
+  std::vector<double> longer = good;
+  longer.push_back(0);
+  EXPECT_THROW(sit.LoadEnvState(0, longer), Error);
+  EXPECT_THROW(sit.LoadEnvState(0, std::vector<double>(good.begin(), good.end() - 1)), Error);
+  sit.LoadEnvState(0, good);
+  EXPECT_EQ(sit.SaveEnvState(0), good);
+}
+
 TEST(SitSkillTest, SameSeedSameEpisodesAtAnyThreadCount) {
   SkillConfig c = SitConfig();
   auto run = [&](int threads) {

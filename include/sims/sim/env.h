@@ -145,7 +145,8 @@ class BatchedEnv {
   void SetState(int env_id, const HumanoidPose& pose);
   /// Serialises every env's simulation, RNG, history and task state (binary string).
   std::string SaveState() const;
-  /// Restores SaveState() output and recomputes observations; throws sims::Error on mismatch.
+  /// Restores SaveState() output and recomputes observations; throws sims::Error on mismatch
+  /// or malformed data and then leaves the environment as it was.
   void LoadState(const std::string& state);
   /// The env's task hook (may be null).
   TaskHook* task() const { return task_.get(); }
@@ -157,6 +158,7 @@ class BatchedEnv {
  private:
   struct Slot;
   void StepEnv(int i, const float* action);
+  void ApplyState(const std::string& state);
   void ResetSlot(int i);
   void RefreshObservation(int i, bool fill_history);
   bool Unstable(int i) const;

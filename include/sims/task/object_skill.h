@@ -21,6 +21,7 @@
 #include "sims/scene/mesh.h"
 #include "sims/task/contact_reward.h"
 #include "sims/task/skill.h"
+#include "sims/task/state_reader.h"
 
 namespace sims::task {
 
@@ -169,8 +170,8 @@ class ObjectSkill : public Skill {
   virtual void DefaultInit(int env_id, Rng& rng, sim::InitialState* init);
   /// Per-env state of the derived skill for snapshots.
   virtual void SaveTaskState(int env_id, std::vector<double>* out) const;
-  /// Restores SaveTaskState() output; returns the number of values consumed.
-  virtual size_t LoadTaskState(int env_id, const double* data, size_t size);
+  /// Restores SaveTaskState() output, reading (and checking) its values from `r`.
+  virtual void LoadTaskState(int env_id, StateReader* r);
 
   std::vector<double> SaveSkillState(int env_id) const final;
   void LoadSkillState(int env_id, const double* data, size_t size) final;

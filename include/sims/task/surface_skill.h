@@ -59,7 +59,7 @@ class SurfaceSkill : public ObjectSkill {
   void SampleTask(int env_id, Rng& rng) override;
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
   void SaveTaskState(int env_id, std::vector<double>* out) const override;
-  size_t LoadTaskState(int env_id, const double* data, size_t size) override;
+  void LoadTaskState(int env_id, StateReader* r) override;
 
  private:
   SurfaceTask task_;

@@ -245,13 +245,12 @@ void GetUpSkill::SaveTaskState(int i, std::vector<double>* out) const {
                            static_cast<double>(fall_start_[i]), stand_[i].x(), stand_[i].y()});
 }
 
-size_t GetUpSkill::LoadTaskState(int i, const double* d, size_t size) {
-  if (size < 5) return 0;
-  phase_[i] = static_cast<int>(d[0]);
-  sit_hold_[i] = static_cast<int>(d[1]);
-  fall_start_[i] = static_cast<uint8_t>(d[2]);
-  stand_[i] = Eigen::Vector2d(d[3], d[4]);
-  return 5;
+void GetUpSkill::LoadTaskState(int i, StateReader* r) {
+  phase_[i] = static_cast<int>(r->Int("phase", kSitPhase, kRisePhase));
+  sit_hold_[i] = static_cast<int>(r->Int("sit_hold", 0, std::numeric_limits<int>::max()));
+  fall_start_[i] = r->Flag("fall_start");
+  stand_[i].x() = r->Real("stand");
+  stand_[i].y() = r->Real("stand");
 }
 
 SkillInfo GetUpSkillInfo() {

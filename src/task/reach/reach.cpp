@@ -154,10 +154,8 @@ void ReachSkill::SaveTaskState(int i, std::vector<double>* out) const {
   out->push_back(static_cast<double>(hand_[i]));
 }
 
-size_t ReachSkill::LoadTaskState(int i, const double* d, size_t size) {
-  if (size < 1) return 0;
-  hand_[i] = static_cast<int>(d[0]);
-  return 1;
+void ReachSkill::LoadTaskState(int i, StateReader* r) {
+  hand_[i] = static_cast<int>(r->Int("hand", 0, sim::kNumContactJoints - 1));
 }
 
 SkillInfo ReachSkillInfo() {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sims/core/error.h"
 #include "sims/scene/contact_targets.h"
@@ -276,35 +277,42 @@ void UnifiedSkill::SaveTaskState(int i, std::vector<double>* out) const {
   }
 }
 
-size_t UnifiedSkill::LoadTaskState(int i, const double* d, size_t size) {
-  size_t k = 0;
-  auto next = [&]() {
-    if (k >= size)
-      ThrowInputError("unified skill state", "steps", "a snapshot of this skill", "too short");
-    return d[k++];
+void UnifiedSkill::LoadTaskState(int i, StateReader* r) {
+  constexpr long long kMaxInt = std::numeric_limits<int>::max();
+  const scene::Scene& scene = *context_.scene;
+  const long long objects = static_cast<long long>(scene.objects.size());
+  const auto part_of = [&](long long object) {
+    const long long parts =
+        object >= 0 ? static_cast<long long>(scene.objects[object].parts.size()) : 0;
+    return static_cast<int>(r->Int("part", -1, parts - 1));
   };
-  step_[i] = static_cast<int>(next());
-  still_[i] = static_cast<int>(next());
-  completed_[i] = static_cast<int>(next());
-  const int n = static_cast<int>(next());
-  steps_[i].assign(n, {});
-  for (auto& s : steps_[i]) {
-    s.object = static_cast<int>(next());
-    s.stand_point.x() = next();
-    s.stand_point.y() = next();
-    s.stand_point.z() = next();
-    s.pairs.resize(static_cast<size_t>(next()));
-    for (auto& p : s.pairs) {
-      p.joint = static_cast<int>(next());
-      p.type = static_cast<ContactType>(static_cast<int>(next()));
-      p.object = static_cast<int>(next());
-      p.part = static_cast<int>(next());
-      p.target_joint = static_cast<int>(next());
-      for (int c = 0; c < 3; ++c) p.direction[c] = next();
+  const long long step = r->Int("step", 0, kMaxInt);
+  const long long still = r->Int("still", 0, kMaxInt);
+  const long long completed = r->Int("completed", 0, kMaxInt);
+  // A step takes at least 5 values: no count beyond what is left.
+  const long long n = r->Int("steps", 1, static_cast<long long>(r->left() / 5));
+  if (step >= n)
+    ThrowInputError("unified skill state", "step", "a step of the chain", std::to_string(step));
+  std::vector<ContactStep> steps(static_cast<size_t>(n));
+  for (ContactStep& s : steps) {
+    s.object = static_cast<int>(r->Int("object", -1, objects - 1));
+    for (int c = 0; c < 3; ++c) s.stand_point[c] = r->Real("stand_point");
+    // A pair takes 8 values.
+    s.pairs.resize(static_cast<size_t>(r->Int("pairs", 0, static_cast<long long>(r->left() / 8))));
+    for (ContactPairSpec& p : s.pairs) {
+      p.joint = static_cast<int>(r->Int("joint", 0, sim::kNumContactJoints - 1));
+      p.type = static_cast<ContactType>(r->Int("type", 0, 2));
+      p.object = static_cast<int>(r->Int("object", -1, objects - 1));
+      p.part = part_of(p.object);
+      p.target_joint = static_cast<int>(r->Int("target_joint", -1, sim::kNumContactJoints - 1));
+      for (int c = 0; c < 3; ++c) p.direction[c] = r->Real("direction");
     }
     s.label = s.walking() ? "walk" : "contact";
   }
-  return k;
+  step_[i] = static_cast<int>(step);
+  still_[i] = static_cast<int>(still);
+  completed_[i] = static_cast<int>(completed);
+  steps_[i] = std::move(steps);
 }
 
 SkillInfo UnifiedSkillInfo() {

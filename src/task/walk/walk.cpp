@@ -11,9 +11,11 @@
 #include "sims/task/walk/walk.h"
 
 #include <cmath>
+#include <limits>
 
 #include "sims/core/error.h"
 #include "sims/sim/features.h"
+#include "sims/task/state_reader.h"
 
 namespace sims::task {
 
@@ -149,13 +151,18 @@ std::vector<double> WalkSkill::SaveSkillState(int env_id) const {
 }
 
 void WalkSkill::LoadSkillState(int env_id, const double* d, size_t size) {
-  if (size != 13) ThrowInputError("walk skill state", "size", "13 values", std::to_string(size));
-  target_[env_id] = {d[0], d[1]};
-  prev_velocity_[env_id] = {d[2], d[3]};
-  hold_[env_id] = static_cast<int>(d[4]);
+  StateReader r("walk skill state", d, size);
+  target_[env_id].x() = r.Real("target");
+  target_[env_id].y() = r.Real("target");
+  prev_velocity_[env_id].x() = r.Real("prev_velocity");
+  prev_velocity_[env_id].y() = r.Real("prev_velocity");
+  hold_[env_id] = static_cast<int>(r.Int("hold", 0, std::numeric_limits<int>::max()));
   std::array<uint64_t, 4> st;
-  for (int k = 0; k < 4; ++k)
-    st[k] = (static_cast<uint64_t>(d[5 + 2 * k]) << 32) | static_cast<uint64_t>(d[6 + 2 * k]);
+  for (uint64_t& w : st) {
+    const auto hi = static_cast<uint64_t>(r.Int("target_rng", 0, 0xffffffffll));
+    w = (hi << 32) | static_cast<uint64_t>(r.Int("target_rng", 0, 0xffffffffll));
+  }
+  r.ExpectEnd();
   target_rng_[env_id].set_state(st);
 }
 

@@ -75,7 +75,7 @@ class GetUpSkill : public ObjectSkill {
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
   void DefaultInit(int env_id, Rng& rng, sim::InitialState* init) override;
   void SaveTaskState(int env_id, std::vector<double>* out) const override;
-  size_t LoadTaskState(int env_id, const double* data, size_t size) override;
+  void LoadTaskState(int env_id, StateReader* r) override;
 
  private:
   void StartGetUp(int env_id, const sim::BodyStates& b);

@@ -64,7 +64,7 @@ class UnifiedSkill : public ObjectSkill {
   bool Accepts(const ObjectGeometry& g) const override { return g.object >= 0; }
   void SampleTask(int env_id, Rng& rng) override;
   void SaveTaskState(int env_id, std::vector<double>* out) const override;
-  size_t LoadTaskState(int env_id, const double* data, size_t size) override;
+  void LoadTaskState(int env_id, StateReader* r) override;
 
  private:
   void UpdateGoals(int env_id, const std::array<JointPair, sim::kNumContactJoints>& pairs);
