@@ -24,6 +24,9 @@ int main(int argc, char** argv) {
   app.add_option("--scene-plan", o.scene_plan, "UniHSI ScenePlan plan.json[#id] (unified)");
   app.add_option("--partnet", partnet, "PartNet folder for --scene-plan");
   app.add_option("--envs", o.num_envs, "parallel environments (0 = min(trials, 16))");
+  app.add_flag("--no-text", o.ablation.no_text, "ablation: zero the style z the policy sees");
+  app.add_flag("--no-heightmap", o.ablation.no_heightmap,
+               "ablation: zero the heightmap the policy sees");
   app.add_flag("--json", json, "print the report as JSON");
   app.add_option("--out", out, "also write the JSON report to this file");
   sims::AddAppFlags(&app, &flags);

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
   app.add_option("--outputs", outputs,
                  "also write each story's run_story outputs to DIR/<difficulty>_<i>");
   app.add_option("--out", out, "write the JSON report here too");
+  app.add_flag("--no-text", o.story.ablation.no_text, "ablation: zero the style z policies see");
+  app.add_flag("--no-heightmap", o.story.ablation.no_heightmap,
+               "ablation: zero the heightmap policies see");
   sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {

@@ -42,11 +42,16 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "seed");
   app.add_option("--out", out, "output directory");
   app.add_flag("--video", write.video, "also render DIR/story.mp4");
+  bool no_text = false, no_heightmap = false;
+  app.add_flag("--no-text", no_text, "ablation: zero the style z every policy sees");
+  app.add_flag("--no-heightmap", no_heightmap, "ablation: zero the heightmap every policy sees");
   sims::AddAppFlags(&app, &flags);
   CLI11_PARSE(app, argc, argv);
   return sims::RunApp(flags, [&] {
     if (!options_file.empty()) options = sims::LoadConfig<sims::fsm::StoryOptions>(options_file);
     if (seed) options.seed = *seed;
+    options.ablation.no_text |= no_text;
+    options.ablation.no_heightmap |= no_heightmap;
     input.seed = options.seed;                         // the theme is planned with the story's seed
     input.environment = sims::InstalledEnvironment();  // $SIMS_LLM_* for --theme
     if (!goal.empty()) input.goal = Eigen::Vector3d(goal[0], goal[1], goal[2]);

@@ -6,7 +6,8 @@
 # Exits non-zero on a crash, a sanitizer report, an uncaught non-project exception, a leak, a
 # hang (an input running over SIMS_FUZZ_TIMEOUT s, default 20) or an input needing more than
 # SIMS_FUZZ_RSS_MB (default 2048) of memory; the input is saved under build-fuzz/artifacts/NAME/.
-# Corpora grow in build-fuzz/corpus/NAME. Builds use SIMS_JOBS (default 2) jobs.
+# Corpora grow in build-fuzz/corpus/NAME. Builds use SIMS_JOBS (default 2) jobs;
+# SIMS_FUZZ_SKIP_BUILD=1 skips the build (to run several fuzzers in parallel after one build).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${SIMS_FUZZ_BUILD_DIR:-$ROOT/build-fuzz}"
@@ -26,7 +27,8 @@ if [ ! -f "$BUILD/build.ninja" ]; then
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
     -DSIMS_FUZZ=ON -DSIMS_BUILD_TESTS=OFF >/dev/null
 fi
-cmake --build "$BUILD" -j "${SIMS_JOBS:-2}" --target "fuzz_$NAME"
+# SIMS_FUZZ_SKIP_BUILD=1 runs the binary as built (several fuzzers in parallel, one build).
+[ -n "${SIMS_FUZZ_SKIP_BUILD:-}" ] || cmake --build "$BUILD" -j "${SIMS_JOBS:-2}" --target "fuzz_$NAME"
 
 # Seeds: the project's own fixtures for this loader, copied once into the working corpus.
 CORPUS="$BUILD/corpus/$NAME" SEEDS="$BUILD/seeds/$NAME" ART="$BUILD/artifacts/$NAME"

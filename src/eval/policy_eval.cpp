@@ -113,6 +113,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
           {"time_to_success_s", time_to_success},
           {"mean_length", mean_length},
           {"control_dt", control_dt},
+          {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
           {"results", per}};
 }
 
@@ -177,6 +178,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.trials = o.trials;
   rep.seed = o.seed;
   rep.control_dt = env.control_dt();
+  rep.ablation = o.ablation;
   rep.results.resize(o.trials);
 
   // Each env runs trial after trial; env i's k-th trial is a fixed trial index.
@@ -184,8 +186,10 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   int next = 0;
   for (int i = 0; i < n_env && next < o.trials; ++i) trial[i] = next++;
   int finished = 0;
+  const std::vector<sim::ObsSegment> segments = setup.skill->obs_segments();
   std::vector<float> actions(static_cast<size_t>(n_env) * env.action_dim());
   while (finished < o.trials) {
+    o.ablation.Apply(segments, n_env, env.obs_dim(), env.observations());
     policy.Act(env.observations(), n_env, actions.data());
     env.Step(actions.data());
     for (int i = 0; i < n_env; ++i) {

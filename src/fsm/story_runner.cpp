@@ -126,8 +126,10 @@ struct StoryRunner::Impl {
   void StepOnce(const std::string& skill) {
     if (override_fn)
       override_fn(skill, env->observations(), action.data());
-    else
+    else {
+      options.ablation.Apply(env->task()->obs_segments(), 1, env->obs_dim(), env->observations());
       policies.at(skill).policy->Act(env->observations(), 1, action.data());
+    }
     env->Step(action.data());
     ++step;
     if (recorder) recorder->AddFrame(env->pose(0));

@@ -257,7 +257,10 @@ BvhMotion ParseBvh(const std::string& text, const std::string& source) {
     lex.Fail(t.line, "Frame Time", "'Time:'", t);
   const Token tt = lex.Next("Frame Time");
   bvh.frame_time = lex.ParseNumber(tt, "Frame Time");
-  if (!(bvh.frame_time > 0)) lex.Fail(tt.line, "Frame Time", "a positive number of seconds", tt);
+  // Capture runs at tens to hundreds of frames per second; a frame time of hours (fuzzer
+  // finding: 15408337 s) turned two frames into half a billion when resampled.
+  if (!(bvh.frame_time > 0 && bvh.frame_time <= 1))
+    lex.Fail(tt.line, "Frame Time", "seconds per frame in (0, 1]", tt);
   bvh.num_frames = static_cast<int>(frames);
 
   // Frame rows: one frame per line, exactly num_channels() numbers each.
@@ -269,7 +272,9 @@ BvhMotion ParseBvh(const std::string& text, const std::string& source) {
       lex.Fail(line, "Frame Time", "a line break after the frame time", "more text");
     ++p;
   }
-  bvh.values.reserve(static_cast<std::size_t>(bvh.num_frames) * std::max(channels, 1));
+  // No more than the rest of the text can hold (each number takes at least two characters).
+  bvh.values.reserve(std::min(static_cast<std::size_t>(bvh.num_frames) * std::max(channels, 1),
+                              (s.size() - p) / 2 + 1));
   int frame = 0;
   while (p < s.size()) {
     // p is at a '\n' (or start); move to the next line.

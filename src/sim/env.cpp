@@ -20,6 +20,19 @@ std::vector<ObsSegment> TaskHook::obs_segments() const {
   return {s};
 }
 
+void ObsAblation::Apply(const std::vector<ObsSegment>& segments, int n, int obs_dim,
+                        float* obs) const {
+  if (!any()) return;
+  for (const ObsSegment& s : segments) {
+    const bool withheld = (no_text && s.kind == ObsSegment::Kind::kStyle) ||
+                          (no_heightmap && s.kind == ObsSegment::Kind::kHeightmap);
+    if (!withheld) continue;
+    SIMS_CHECK(kSelfObsDim + s.offset + s.size <= obs_dim);
+    for (int i = 0; i < n; ++i)
+      std::fill_n(obs + static_cast<size_t>(i) * obs_dim + kSelfObsDim + s.offset, s.size, 0.f);
+  }
+}
+
 uint32_t FeetContactMask() { return (1u << kRightFoot) | (1u << kLeftFoot); }
 
 void EnvConfig::Validate() const {
@@ -440,7 +453,15 @@ void BatchedEnv::ApplyState(const std::string& state) {
     r.Get(rng.data(), rng.size());
     s.rng.set_state(rng);
     s.progress = r.Get<int>();
+    // An episode never runs past its length (fuzzer finding: INT_MAX overflowed at the step).
+    if (s.progress < 0 || s.progress > config_.episode_length)
+      ThrowInputError(
+          "environment state", "progress",
+          "control steps in [0, episode_length = " + std::to_string(config_.episode_length) + "]",
+          std::to_string(s.progress));
     s.grace = r.Get<int>();
+    if (s.grace < 0)
+      ThrowInputError("environment state", "grace", "a step count ≥ 0", std::to_string(s.grace));
     s.reference = r.Get<uint8_t>() != 0;
     r.Get(s.amp_hist.data(), s.amp_hist.size());
     mj_resetData(m, d);

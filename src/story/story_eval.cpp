@@ -125,6 +125,7 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       {"per_difficulty", per},
       {"stories", rows},
       {"policies", policies.source.string()},
+      {"ablation", ConfigToJson(o.story.ablation)},
       {"feature",
        "per-frame heading-frame body positions (42) + joint rotations (72), every 3rd frame"}};
   if (!all_features.empty()) {

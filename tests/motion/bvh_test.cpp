@@ -111,6 +111,11 @@ TEST(BvhTest, MalformedFilesGiveClearErrors) {
                         "Frame Time: -1\n0\n",
                         "negative frame time"),
                Error);
+  // Fuzzer finding (tools/fuzz.sh bvh): a frame time of 15408337 s made retargeting resample
+  // two frames into ~5e8 (out of memory); now the frame time is rejected, naming the field.
+  const std::string hours = ErrorOf(testing::TestData("fuzz/bvh/frame_time_of_hours.bvh"));
+  EXPECT_NE(hours.find("Frame Time"), std::string::npos) << hours;
+  EXPECT_NE(hours.find("(0, 1]"), std::string::npos) << hours;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "sims/scene/height_grid.h"
 
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -121,6 +122,19 @@ TEST(HeightGridTest, BatchSamplingMatchesSingleAtAnyThreadCount) {
     agree += std::abs(grid->Height(x, y) - rc.HeightAt(x, y)) < 1e-4;
   }
   EXPECT_GT(agree, 0.97 * total);
+}
+
+// Fuzzer finding (tools/fuzz.sh env_state): a snapshot with a body 2.6e10 m away cast that
+// distance to an int cell index (UB; the asan job's UBSan reports it). Far away, infinite or
+// NaN points are off the grid: height 0.
+TEST(HeightGridTest, FarAndNonFinitePointsAreOffTheGrid) {
+  const SceneHeightGrid grid(testing::BoxScene({0, 0, 0}, {1, 1, 0.3}));
+  EXPECT_NEAR(grid.Height(0, 0), 0.3, 1e-4);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double far : {2.6e10, -2.6e10, 1e300, inf, -inf, std::nan("")}) {
+    EXPECT_EQ(grid.Height(far, 0), 0.f) << far;
+    EXPECT_EQ(grid.Height(0, far), 0.f) << far;
+  }
 }
 
 TEST(HeightGridTest, UniHsiLayoutAndHeading) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -282,8 +283,55 @@ TEST(EnvStateTest, RejectedSnapshotLeavesTheEnvAsItWas) {
   std::memcpy(huge.data() + huge.size() - sizeof(count), &count, sizeof(count));
   EXPECT_THROW(b.LoadState(huge), Error);
   EXPECT_EQ(b.SaveState(), before);
+  // Env 0's step count past the episode length (INT_MAX overflowed at the next step): the
+  // header (magic, num_envs, nq, nv, nu, amp_history), the stats, the RNG, then the count.
+  std::string late = snapshot;
+  const size_t at = sizeof(uint32_t) + 5 * sizeof(int) + sizeof(EnvStats) + 4 * sizeof(uint64_t);
+  int progress = 0;
+  std::memcpy(&progress, late.data() + at, sizeof(progress));
+  EXPECT_EQ(progress, a.progress(0));
+  progress = std::numeric_limits<int>::max();
+  std::memcpy(late.data() + at, &progress, sizeof(progress));
+  EXPECT_THROW(b.LoadState(late), Error);
+  EXPECT_EQ(b.SaveState(), before);
   b.LoadState(snapshot);
   EXPECT_EQ(b.SaveState(), snapshot);
+}
+
+}  // namespace
+}  // namespace sims::sim
+
+namespace sims::sim {
+namespace {
+
+TEST(ObsAblationTest, ZeroesOnlyTheWithheldSegments) {
+  // Task layout: a vector (3), a 2×2 heightmap, a style z (2); two rows.
+  std::vector<ObsSegment> segs(3);
+  segs[0] = {"goal", ObsSegment::Kind::kVector, 0, 3, 0, 0};
+  segs[1] = {"heightmap", ObsSegment::Kind::kHeightmap, 3, 4, 2, 2};
+  segs[2] = {"z", ObsSegment::Kind::kStyle, 7, 2, 0, 0};
+  const int dim = kSelfObsDim + 9;
+  std::vector<float> obs(2 * dim);
+  for (size_t k = 0; k < obs.size(); ++k) obs[k] = 1.f + static_cast<float>(k);
+  const auto run = [&](bool no_text, bool no_heightmap) {
+    std::vector<float> o = obs;
+    ObsAblation a;
+    a.no_text = no_text;
+    a.no_heightmap = no_heightmap;
+    a.Apply(segs, 2, dim, o.data());
+    return o;
+  };
+  EXPECT_EQ(run(false, false), obs);
+  for (const bool text : {false, true})
+    for (const bool hm : {false, true}) {
+      const auto o = run(text, hm);
+      for (int i = 0; i < 2; ++i)
+        for (int k = 0; k < dim; ++k) {
+          const int t = k - kSelfObsDim;  // index in the task observation
+          const bool zeroed = (hm && t >= 3 && t < 7) || (text && t >= 7);
+          EXPECT_EQ(o[i * dim + k], zeroed ? 0.f : obs[i * dim + k]) << i << " " << k;
+        }
+    }
 }
 
 }  // namespace

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "sims/sim/task_hook.h"
+
 #include <nlohmann/json.hpp>
 
 namespace sims::eval {
@@ -34,6 +36,7 @@ struct PolicyEvalOptions {
   int num_envs = 0;                    ///< Parallel environments (0 = min(trials, 16)).
   int threads = 0;                     ///< Env threads (0 = the process setting).
   bool held_out = true;                ///< Held-out object dimensions.
+  sim::ObsAblation ablation;           ///< Inputs withheld from the policy (--no-text, ...).
 };
 
 /// One trial.
@@ -64,6 +67,7 @@ struct PolicyEvalReport {
   double mean_num_steps = 1;         ///< Mean plan steps per trial.
   double time_to_success = 0;        ///< Mean seconds to first success (successful trials).
   double mean_length = 0;            ///< Mean trial length (control steps).
+  sim::ObsAblation ablation;         ///< Inputs that were withheld.
   std::vector<TrialResult> results;  ///< Per trial.
 
   /// JSON with the aggregates and the per-trial results.

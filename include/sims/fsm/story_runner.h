@@ -17,6 +17,7 @@
 #include "sims/fsm/policy_set.h"
 #include "sims/io/motion_record.h"
 #include "sims/scene/scene.h"
+#include "sims/sim/task_hook.h"
 
 namespace sims::fsm {
 
@@ -36,6 +37,7 @@ struct StoryOptions {
   bool missing_policy_fails = true;   ///< Keyframes of skills without a policy fail (else: error).
   uint64_t seed = 0;                  ///< Env seed and start placement (0: canonical start).
   int threads = 1;                    ///< Environment threads.
+  sim::ObsAblation ablation;          ///< Inputs withheld from every policy (--no-text, ...).
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -54,6 +56,7 @@ struct StoryOptions {
     a->Visit(SIMS_NVP(missing_policy_fails));
     a->Visit(SIMS_NVP(seed));
     a->Visit(SIMS_NVP(threads));
+    a->Visit(SIMS_NVP(ablation));
   }
   /// Positive times and counts.
   void Validate() const;

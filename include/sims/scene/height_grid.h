@@ -48,16 +48,18 @@ class SceneHeightGrid {
 
   /// Height at (x, y): the fine grid cell containing it if any, else the coarse cell, else 0.
   float Height(double x, double y) const {
-    const int ix = static_cast<int>(std::floor((x - x0_) * inv_coarse_));
-    const int iy = static_cast<int>(std::floor((y - y0_) * inv_coarse_));
-    if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return 0.0f;
-    const int64_t cell = static_cast<int64_t>(iy) * nx_ + ix;
+    // Cells are compared as doubles first: a body far away (a simulation blowing up) or NaN
+    // must not reach the int cast.
+    const double gx = std::floor((x - x0_) * inv_coarse_);
+    const double gy = std::floor((y - y0_) * inv_coarse_);
+    if (!(gx >= 0 && gy >= 0 && gx < nx_ && gy < ny_)) return 0.0f;
+    const int64_t cell = static_cast<int64_t>(gy) * nx_ + static_cast<int64_t>(gx);
     for (int32_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
       const Fine& f = fine_[cell_fine_[k]];
-      const int fx = static_cast<int>(std::floor((x - f.x0) * inv_fine_));
-      const int fy = static_cast<int>(std::floor((y - f.y0) * inv_fine_));
+      const double fx = std::floor((x - f.x0) * inv_fine_);
+      const double fy = std::floor((y - f.y0) * inv_fine_);
       if (fx >= 0 && fy >= 0 && fx < f.nx && fy < f.ny)
-        return f.heights[static_cast<int64_t>(fy) * f.nx + fx];
+        return f.heights[static_cast<int64_t>(fy) * f.nx + static_cast<int64_t>(fx)];
     }
     return coarse_[cell];
   }

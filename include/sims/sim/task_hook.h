@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sims/core/config.h"
 #include "sims/core/rng.h"
 #include "sims/sim/state.h"
 
@@ -52,6 +53,26 @@ struct ObsSegment {
   int offset = 0;             ///< Offset within the task observation.
   int size = 0;               ///< Number of floats.
   int rows = 0, cols = 0;     ///< Heightmap grid shape (rows·cols = size).
+};
+
+/// The input ablations of the papers (SIMS, UniHSI): a policy run with part of what it was
+/// trained to see withheld.
+struct ObsAblation {
+  bool no_text = false;       ///< Style z zeroed (what an unconditioned policy sees).
+  bool no_heightmap = false;  ///< Heightmap zeroed (flat, open floor).
+
+  /// True when something is withheld.
+  bool any() const { return no_text || no_heightmap; }
+  /// Zeroes the withheld segments (`segments`: the task layout) in `n` observation rows of
+  /// width `obs_dim` (223 self values, then the task observation).
+  void Apply(const std::vector<ObsSegment>& segments, int n, int obs_dim, float* obs) const;
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(no_text));
+    a->Visit(SIMS_NVP(no_heightmap));
+  }
 };
 
 /// A skill plugged into the environment.
