@@ -4,6 +4,7 @@
 #include <cctype>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -63,12 +64,71 @@ ImportedNode Convert(const aiScene* scene, const aiNode* node, const Eigen::Affi
   return out;
 }
 
+// Assimp 5.2's PLY reader loops without end on some malformed headers (fuzzer finding: a
+// header with a garbled keyword line ran for minutes), so a .ply header is checked against
+// the format before Assimp sees the file: "ply", a format line, then only comment / obj_info /
+// element NAME COUNT / property lines up to "end_header".
+void CheckPlyHeader(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) ThrowInputError(path.string(), "", "a readable PLY file", "cannot open");
+  constexpr int kMaxHeaderLines = 10000;
+  std::string line;
+  for (int n = 1; n <= kMaxHeaderLines; ++n) {
+    if (!std::getline(in, line))
+      ThrowInputError(path.string(), "header", "a PLY header ending in 'end_header'",
+                      "the end of the file at line " + std::to_string(n));
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    const std::string where = "header line " + std::to_string(n);
+    if (n == 1) {
+      if (line != "ply") ThrowInputError(path.string(), where, "'ply'", line.substr(0, 40));
+      continue;
+    }
+    if (n == 2) {
+      std::string format, version;
+      words >> format >> version;
+      if (word != "format" ||
+          (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian"))
+        ThrowInputError(path.string(), where,
+                        "'format ascii|binary_little_endian|binary_big_endian 1.0'",
+                        line.substr(0, 40));
+      continue;
+    }
+    if (word == "end_header") return;
+    if (word == "comment" || word == "obj_info") continue;
+    if (word == "element") {
+      std::string name;
+      long long count = -1;
+      if (!(words >> name >> count) || count < 0)
+        ThrowInputError(path.string(), where, "'element NAME COUNT'", line.substr(0, 40));
+      continue;
+    }
+    if (word == "property") {
+      std::string type, rest;
+      if (!(words >> type >> rest))
+        ThrowInputError(path.string(), where, "'property TYPE NAME'", line.substr(0, 40));
+      continue;
+    }
+    ThrowInputError(path.string(), where,
+                    "a PLY header line (comment, obj_info, element, property, end_header)",
+                    line.substr(0, 40));
+  }
+  ThrowInputError(path.string(), "header",
+                  "'end_header' within " + std::to_string(kMaxHeaderLines) + " lines", "none");
+}
+
 }  // namespace
 
 ImportedNode ImportWithAssimp(const std::filesystem::path& path, double unit_scale,
                               char* up_axis_hint) {
   if (!std::filesystem::exists(path))
     ThrowInputError(path.string(), "", "an existing mesh file", "no such file");
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".ply") CheckPlyHeader(path);
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
