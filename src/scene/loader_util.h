@@ -28,11 +28,15 @@ struct ImportedNode {
   std::vector<ImportedNode> children;                  ///< Child nodes.
 };
 
-/// Reads a file with Assimp (triangulated, points and lines dropped). Throws sims::Error
-/// naming the file when it is missing or unreadable. `up_axis_hint` receives the file's
-/// declared up axis ('x', 'y', 'z') or 0 when it declares none.
+/// Reads a file with Assimp (triangulated, points and lines dropped; PLY files with ReadPly).
+/// Throws sims::Error naming the file when it is missing or unreadable. `up_axis_hint` receives the
+/// file's declared up axis ('x', 'y', 'z') or 0 when it declares none.
 ImportedNode ImportWithAssimp(const std::filesystem::path& path, double unit_scale,
                               char* up_axis_hint = nullptr);
+
+/// Reads a PLY file's vertex positions and faces (fan-triangulated) in file order: ASCII and
+/// binary (little- or big-endian). Throws sims::Error naming the file and the field.
+TriangleMesh ReadPly(const std::filesystem::path& path);
 
 /// Rotation taking a Y-up frame to Z-up: (x, y, z) -> (x, -z, y).
 Eigen::Isometry3d YUpToZUp();
