@@ -27,6 +27,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-text", o.ablation.no_text, "ablation: zero the style z the policy sees");
   app.add_flag("--no-heightmap", o.ablation.no_heightmap,
                "ablation: zero the heightmap the policy sees");
+  app.add_option("--reference-starts", o.reference_starts,
+                 "share of trials started from motion clips as in training (0-1; default 0: "
+                 "standing starts)");
   app.add_flag("--json", json, "print the report as JSON");
   app.add_option("--out", out, "also write the JSON report to this file");
   sims::AddAppFlags(&app, &flags);

@@ -96,6 +96,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
                    {"force_end", t.force_end},
                    {"success_step", t.success_step},
                    {"contact_error", t.contact_error},
+                   {"min_contact_error", t.min_contact_error},
                    {"steps_completed", t.steps_completed},
                    {"num_steps", t.num_steps},
                    {"length", t.length}});
@@ -108,12 +109,14 @@ nlohmann::json PolicyEvalReport::ToJson() const {
           {"fall_rate", fall_rate},
           {"force_end_rate", force_end_rate},
           {"contact_error", contact_error},
+          {"min_contact_error", min_contact_error},
           {"success_steps", success_steps},
           {"mean_num_steps", mean_num_steps},
           {"time_to_success_s", time_to_success},
           {"mean_length", mean_length},
           {"control_dt", control_dt},
           {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
+          {"reference_starts", reference_starts},
           {"results", per}};
 }
 
@@ -130,8 +133,13 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   const task::SkillInfo& info = task::FindSkill(sc.skill);
   sc.object.held_out_objects = o.held_out;
   sc.object.spawn_curriculum = false;  // the full spawn-distance range
-  sc.reference_init_prob = 0;
-  if (!sc.style_conditioned) sc.motion.manifest.clear();
+  // Standing starts unless asked for the training's clip starts (a diagnostic: can the policy
+  // finish a motion it is placed in?).
+  if (!(o.reference_starts >= 0 && o.reference_starts <= 1))
+    ThrowInputError("--reference-starts", "reference_starts", "a share in [0, 1]",
+                    std::to_string(o.reference_starts));
+  sc.reference_init_prob = o.reference_starts;
+  if (!sc.style_conditioned && o.reference_starts == 0) sc.motion.manifest.clear();
   if (info.configure_eval) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
   ec.num_envs = n_env;
@@ -179,6 +187,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.seed = o.seed;
   rep.control_dt = env.control_dt();
   rep.ablation = o.ablation;
+  rep.reference_starts = o.reference_starts;
   rep.results.resize(o.trials);
 
   // Each env runs trial after trial; env i's k-th trial is a fixed trial index.
@@ -195,6 +204,8 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     for (int i = 0; i < n_env; ++i) {
       if (trial[i] < 0) continue;
       TrialResult& t = rep.results[trial[i]];
+      t.min_contact_error =
+          t.length == 0 ? hook->error(i) : std::min(t.min_contact_error, hook->error(i));
       ++t.length;
       // Success counts once the task reports itself accomplished (held as long as required).
       if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
@@ -223,6 +234,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     rep.fall_rate += t.fell;
     rep.force_end_rate += t.force_end;
     rep.contact_error += t.contact_error;
+    rep.min_contact_error += t.min_contact_error;
     rep.success_steps += t.steps_completed;
     rep.mean_num_steps += t.num_steps;
     rep.mean_length += t.length;
@@ -233,6 +245,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.fall_rate /= n;
   rep.force_end_rate /= n;
   rep.contact_error /= n;
+  rep.min_contact_error /= n;
   rep.success_steps /= n;
   rep.mean_num_steps /= n;
   rep.mean_length /= n;

@@ -26,6 +26,13 @@ namespace sims::learning {
 
 namespace {
 
+// A network config without its exploration noise: the fixed action σ is a training setting, so
+// a resumed or warm-started run may change it; the layer sizes must match the weights.
+nlohmann::json NetworkShape(nlohmann::json network) {
+  network.erase("action_log_std");
+  return network;
+}
+
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -906,7 +913,7 @@ void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
                                      const std::string& source) {
   auto& m = *this;
   const auto saved_cfg = nlohmann::json::parse(TensorString(ReadTensor(archive, "config")));
-  if (saved_cfg["network"] != ConfigToJson(m.cfg.network))
+  if (NetworkShape(saved_cfg["network"]) != NetworkShape(ConfigToJson(m.cfg.network)))
     ThrowInputError(source, "network", "the same network sizes as the current config",
                     saved_cfg["network"].dump());
   ReadModule(archive, "actor_critic", m.ac);
@@ -1030,7 +1037,7 @@ void Trainer::InitFromPolicy(const std::filesystem::path& path) {
   auto& m = *impl_;
   ReadPolicyFile(path, [&](torch::serialize::InputArchive& archive, const std::string& metadata) {
     const auto meta = nlohmann::json::parse(metadata);
-    if (meta.at("network") != ConfigToJson(m.cfg.network))
+    if (NetworkShape(meta.at("network")) != NetworkShape(ConfigToJson(m.cfg.network)))
       ThrowInputError(path.string(), "network", "the same network sizes as this run",
                       meta.at("network").dump());
     const std::vector<sim::ObsSegment> segs = SegmentsOf(meta);

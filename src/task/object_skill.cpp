@@ -53,6 +53,7 @@ void ObjectParams::Validate() const {
   Require(spawn_curriculum_step > 0 && spawn_curriculum_step <= 1, "spawn_curriculum_step",
           "a level step in (0, 1]");
   Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
+  Require(reference_window >= 0, "reference_window", "a non-negative duration (s), 0 = off");
   Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
 }
 
@@ -232,7 +233,8 @@ double ObjectSkill::PreContactTime(int clip, Rng& rng) const {
   double end = config_.reference_init_max_fraction * duration;
   const double contact = pre_contact_time(clip);
   if (contact >= 0) end = std::min(end, contact);
-  return rng.Uniform(0.0, end);
+  const double window = config_.object.reference_window;
+  return rng.Uniform(window > 0 ? std::max(0.0, end - window) : 0.0, end);
 }
 
 void ObjectSkill::SetEpisodeTarget(int env_id, const Eigen::Vector3d& target_W,

@@ -101,6 +101,24 @@ TEST(TrainerTest, CompactCheckpointResumesWithoutTheReplay) {
   EXPECT_TRUE(std::isfinite(s.disc_loss));
 }
 
+// A campaign may change the fixed exploration noise between chunks: a checkpoint loads under
+// another action σ (the new one is used), but not under other layer sizes.
+TEST(TrainerTest, ResumeMayChangeTheActionNoiseButNotTheLayers) {
+  const auto dir = sims::testing::TempDir("trainer_sigma");
+  Trainer a = MakeTrainer(true);
+  a.RunIteration();
+  a.SaveCheckpoint(dir / "ckpt.pt");
+  LearnerConfig noisier = ToyConfig(true);
+  noisier.network.action_log_std = -0.5;
+  Trainer b = MakeTrainer(noisier);
+  b.LoadCheckpoint(dir / "ckpt.pt");
+  EXPECT_EQ(a.FlatParameters(), b.FlatParameters());
+  LearnerConfig wider = ToyConfig(true);
+  wider.network.actor_hidden = {64, 32};
+  Trainer c = MakeTrainer(wider);
+  EXPECT_THROW(c.LoadCheckpoint(dir / "ckpt.pt"), Error);
+}
+
 // The actor warm-up: for the first K iterations only the critic learns (a warm-started actor
 // is not pushed around by a fresh critic's advantages); afterwards the actor learns too.
 TEST(TrainerTest, ActorWarmupFreezesTheActorOnly) {

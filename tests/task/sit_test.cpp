@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iostream>
 
 #include <gtest/gtest.h>
 
@@ -190,6 +191,40 @@ TEST(SitSkillTest, ReferenceStartsComeBeforeContactAndSkipIdleClips) {
     }
   }
   EXPECT_GE(reference, 24);
+}
+
+TEST(SitSkillTest, ReferenceWindowStartsNearContact) {
+  // The same resets with and without a 0.4 s window before contact: windowed starts are all
+  // close to the seat (at most ~0.4 s of walking/sitting from contact), unwindowed ones are not.
+  auto farthest = [](double window) {
+    SkillConfig c = SitConfig();
+    c.motion.manifest = testing::SyntheticManifest({"sit", "walk"});
+    c.motion.skills = {"sit", "walk"};
+    c.reference_init_prob = 1.0;
+    c.object.max_contact_force = 0;
+    c.object.reference_window = window;
+    auto s = MakeSkillEnv(c, 8);
+    auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
+    double worst = 0;
+    int reference = 0;
+    for (int round = 0; round < 6; ++round) {
+      for (int i = 0; i < 8; ++i) {
+        s.env->ResetEnv(i);
+        if (!sit->reference_start(i)) continue;
+        ++reference;
+        EXPECT_GT(sit->goal_error(i), c.object.contact_success_threshold);
+        worst = std::max(worst, sit->goal_error(i));
+      }
+    }
+    EXPECT_GE(reference, 24);
+    return worst;
+  };
+  const double windowed = farthest(0.4);
+  const double whole = farthest(0.0);
+  std::cout << "farthest reference start from the target: window 0.4 s " << windowed
+            << " m, whole approach " << whole << " m\n";
+  EXPECT_LT(windowed, 0.9);
+  EXPECT_GT(whole, 1.2);
 }
 
 TEST(SitSkillTest, SpawnCurriculumWidensWithSuccess) {

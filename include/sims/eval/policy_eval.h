@@ -37,18 +37,20 @@ struct PolicyEvalOptions {
   int threads = 0;                     ///< Env threads (0 = the process setting).
   bool held_out = true;                ///< Held-out object dimensions.
   sim::ObsAblation ablation;           ///< Inputs withheld from the policy (--no-text, ...).
+  double reference_starts = 0;         ///< Share of trials started from motion clips (0–1).
 };
 
 /// One trial.
 struct TrialResult {
-  bool success = false;      ///< Goal reached (all steps) without a fall.
-  bool fell = false;         ///< Ended by a fall or a simulation blow-up.
-  bool force_end = false;    ///< Ended by the task's excessive-contact-force termination.
-  int success_step = -1;     ///< First control step at which the task completed (−1: never).
-  double contact_error = 0;  ///< Skill goal error at the end of the trial (m).
-  int steps_completed = 0;   ///< Plan steps passed (single-step skills: 1 on success).
-  int num_steps = 1;         ///< Plan steps of the trial.
-  int length = 0;            ///< Control steps the trial ran.
+  bool success = false;          ///< Goal reached (all steps) without a fall.
+  bool fell = false;             ///< Ended by a fall or a simulation blow-up.
+  bool force_end = false;        ///< Ended by the task's excessive-contact-force termination.
+  int success_step = -1;         ///< First control step at which the task completed (−1: never).
+  double contact_error = 0;      ///< Skill goal error at the end of the trial (m).
+  double min_contact_error = 0;  ///< Smallest skill goal error during the trial (m).
+  int steps_completed = 0;       ///< Plan steps passed (single-step skills: 1 on success).
+  int num_steps = 1;             ///< Plan steps of the trial.
+  int length = 0;                ///< Control steps the trial ran.
 };
 
 /// Aggregated results.
@@ -63,11 +65,13 @@ struct PolicyEvalReport {
   double fall_rate = 0;              ///< Fraction of trials that ended by a fall.
   double force_end_rate = 0;         ///< Fraction ended by excessive contact force.
   double contact_error = 0;          ///< Mean final goal error (m).
+  double min_contact_error = 0;      ///< Mean over trials of the smallest goal error (m).
   double success_steps = 0;          ///< Mean plan steps passed per trial.
   double mean_num_steps = 1;         ///< Mean plan steps per trial.
   double time_to_success = 0;        ///< Mean seconds to first success (successful trials).
   double mean_length = 0;            ///< Mean trial length (control steps).
   sim::ObsAblation ablation;         ///< Inputs that were withheld.
+  double reference_starts = 0;       ///< Share of trials asked to start from motion clips.
   std::vector<TrialResult> results;  ///< Per trial.
 
   /// JSON with the aggregates and the per-trial results.

@@ -23,6 +23,9 @@ struct ObjectParams {
   bool spawn_curriculum = false;
   double spawn_curriculum_step = 0.1;      ///< Level change per episode (level in [0, 1]).
   double contact_success_threshold = 0.2;  ///< Sit/reach 0.20 m, lie 0.30 m.
+  /// Reference starts within this many seconds before the clip's contact (0 = anywhere before
+  /// it): a short window starts most episodes mid-approach, where the contact is a few steps away.
+  double reference_window = 0;
   double max_contact_force = 1e4;  ///< Net contact force (N) that ends an episode (0 = off).
 
   /// Lists the fields for JSON binding (keys as in the skill config).
@@ -37,6 +40,7 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(spawn_curriculum));
     a->Visit(SIMS_NVP(spawn_curriculum_step));
     a->Visit(SIMS_NVP(contact_success_threshold));
+    a->Visit(SIMS_NVP(reference_window));
     a->Visit(SIMS_NVP(max_contact_force));
   }
   /// Checks ranges.
