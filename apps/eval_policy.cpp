@@ -27,6 +27,12 @@ int main(int argc, char** argv) {
   app.add_flag("--no-text", o.ablation.no_text, "ablation: zero the style z the policy sees");
   app.add_flag("--no-heightmap", o.ablation.no_heightmap,
                "ablation: zero the heightmap the policy sees");
+  app.add_flag("--style-eval", o.style_eval,
+               "style accuracy: each trial's z from a held-out caption, its motion classified");
+  app.add_option("--style-captions", o.style_captions,
+                 "captions for --style-eval (default configs/language/test_paraphrases.json)");
+  app.add_option("--style-model", o.style_model,
+                 "motion-text model for --style-eval (default: the policy's, else bundled)");
   app.add_option("--reference-starts", o.reference_starts,
                  "share of trials started from motion clips as in training (0-1; default 0: "
                  "standing starts)");

@@ -7,6 +7,8 @@
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
+#include "sims/language/embedding_bank.h"
+#include "sims/language/motion_text.h"
 #include "sims/learning/text_styles.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
@@ -86,11 +88,76 @@ ResolvedConfig ResolveConfig(const PolicyEvalOptions& o, const learning::Policy&
   return rc;
 }
 
+// What --style-eval needs: the classifier, and per emotion the held-out captions' z.
+struct StyleTrials {
+  std::unique_ptr<StyleClassifier> classifier;
+  std::vector<std::string> emotions;
+  std::map<std::string, std::vector<std::pair<std::string, Eigen::VectorXf>>> captions;
+  StyleEvalReport report;
+};
+
+StyleTrials PrepareStyleTrials(const PolicyEvalOptions& o, const task::SkillConfig& sc,
+                               const motion::MotionLibrary* lib) {
+  if (!lib)
+    ThrowInputError(o.checkpoint.string(), "extra.skill.motion.manifest",
+                    "a motion manifest (the classifier learns styles from its clips) for "
+                    "--style-eval",
+                    "none");
+  StyleTrials st;
+  std::vector<const motion::MotionClip*> train, heldout;
+  for (int i = 0; i < lib->num_clips(); ++i) {
+    const motion::MotionClip& c = lib->clip(i);
+    if (c.meta().skill != sc.skill) continue;
+    (IsClipVariant(c.meta()) ? heldout : train).push_back(&c);
+  }
+  if (train.empty())
+    ThrowInputError(sc.motion.manifest, "clips", "clips of skill '" + sc.skill + "'", "none");
+  st.classifier = std::make_unique<StyleClassifier>(StyleClassifier::Train(train));
+  st.report.classifier_heldout = st.classifier->Score(heldout, /*segment_frames=*/90);
+  st.report.chance = 1.0 / static_cast<double>(st.classifier->labels().size());
+
+  const std::filesystem::path captions =
+      o.style_captions.empty() ? ConfigPath("language/test_paraphrases.json") : o.style_captions;
+  const std::filesystem::path model = !o.style_model.empty() ? o.style_model
+                                      : !sc.style_model.empty()
+                                          ? std::filesystem::path(sc.style_model)
+                                          : language::DefaultStyleModelDir();
+  st.report.captions = captions.string();
+  st.report.model = model.string();
+  const auto embedder = language::StyleEmbedder::Load(model);
+  const nlohmann::json j = ReadJsonFile(captions);
+  if (!j.contains("queries") || !j["queries"].is_array())
+    ThrowInputError(captions.string(), "queries", "an array of {caption, clip}",
+                    j.dump().substr(0, 80));
+  for (const auto& q : j["queries"]) {
+    if (!q.contains("caption") || !q["caption"].is_string() || !q.contains("clip") ||
+        !q["clip"].is_string())
+      ThrowInputError(captions.string(), "queries[]", "{\"caption\": text, \"clip\": name}",
+                      q.dump());
+    const std::string clip = q["clip"];
+    for (int i = 0; i < lib->num_clips(); ++i) {
+      const motion::MotionMeta& m = lib->clip(i).meta();
+      if (m.name != clip || m.mirrored || m.skill != sc.skill) continue;
+      if (st.classifier->LabelIndex(m.emotion) < 0) break;
+      const std::string caption = q["caption"];
+      st.captions[m.emotion].emplace_back(caption, embedder.Embed(caption));
+      break;
+    }
+  }
+  for (const auto& [emotion, list] : st.captions) st.emotions.push_back(emotion);
+  if (st.emotions.size() < 2)
+    ThrowInputError(captions.string(), "queries",
+                    "captions of at least two emotions of '" + sc.skill + "' clips",
+                    std::to_string(st.emotions.size()));
+  st.report.emotions = st.emotions;
+  return st;
+}
+
 }  // namespace
 
 nlohmann::json PolicyEvalReport::ToJson() const {
   nlohmann::json per = nlohmann::json::array();
-  for (const auto& t : results)
+  for (const auto& t : results) {
     per.push_back({{"success", t.success},
                    {"fell", t.fell},
                    {"force_end", t.force_end},
@@ -100,24 +167,45 @@ nlohmann::json PolicyEvalReport::ToJson() const {
                    {"steps_completed", t.steps_completed},
                    {"num_steps", t.num_steps},
                    {"length", t.length}});
-  return {{"skill", skill},
-          {"checkpoint", checkpoint},
-          {"scene", scene},
-          {"trials", trials},
-          {"seed", seed},
-          {"success_rate", success_rate},
-          {"fall_rate", fall_rate},
-          {"force_end_rate", force_end_rate},
-          {"contact_error", contact_error},
-          {"min_contact_error", min_contact_error},
-          {"success_steps", success_steps},
-          {"mean_num_steps", mean_num_steps},
-          {"time_to_success_s", time_to_success},
-          {"mean_length", mean_length},
-          {"control_dt", control_dt},
-          {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
-          {"reference_starts", reference_starts},
-          {"results", per}};
+    if (style) {
+      per.back()["caption"] = t.caption;
+      per.back()["emotion"] = t.emotion;
+      per.back()["style"] = t.style;
+    }
+  }
+  nlohmann::json out = {
+      {"skill", skill},
+      {"checkpoint", checkpoint},
+      {"scene", scene},
+      {"trials", trials},
+      {"seed", seed},
+      {"success_rate", success_rate},
+      {"fall_rate", fall_rate},
+      {"force_end_rate", force_end_rate},
+      {"contact_error", contact_error},
+      {"min_contact_error", min_contact_error},
+      {"success_steps", success_steps},
+      {"mean_num_steps", mean_num_steps},
+      {"time_to_success_s", time_to_success},
+      {"mean_length", mean_length},
+      {"control_dt", control_dt},
+      {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
+      {"reference_starts", reference_starts},
+      {"results", per}};
+  if (style) {
+    const StyleAccuracy& h = style->classifier_heldout;
+    out["style_accuracy"] = style->accuracy;
+    out["style_per_emotion"] = style->per_emotion;
+    out["style_chance"] = style->chance;
+    out["style_emotions"] = style->emotions;
+    out["style_captions"] = style->captions;
+    out["style_model"] = style->model;
+    out["style_classifier_heldout"] = {{"accuracy", h.accuracy},
+                                       {"per_label", h.per_label},
+                                       {"segments", h.motions},
+                                       {"total", h.total}};
+  }
+  return out;
 }
 
 PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
@@ -139,7 +227,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     ThrowInputError("--reference-starts", "reference_starts", "a share in [0, 1]",
                     std::to_string(o.reference_starts));
   sc.reference_init_prob = o.reference_starts;
-  if (!sc.style_conditioned && o.reference_starts == 0) sc.motion.manifest.clear();
+  if (!sc.style_conditioned && o.reference_starts == 0 && !o.style_eval) sc.motion.manifest.clear();
   if (info.configure_eval) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
   ec.num_envs = n_env;
@@ -189,11 +277,28 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.ablation = o.ablation;
   rep.reference_starts = o.reference_starts;
   rep.results.resize(o.trials);
-
   // Each env runs trial after trial; env i's k-th trial is a fixed trial index.
   std::vector<int> trial(n_env, -1);
   int next = 0;
+  StyleTrials st;
+  if (o.style_eval) st = PrepareStyleTrials(o, sc, setup.context.motions.get());
+  // Style evaluation: trial k pursues emotion k mod E with that emotion's (k / E)-th caption;
+  // its motion (one frame per control step) is labelled when it ends.
+  std::vector<std::vector<motion::MotionFrame>> motion(n_env);
+  auto begin_trial = [&](int i) {
+    if (!o.style_eval || trial[i] < 0) return;
+    const int k = trial[i], e = static_cast<int>(st.emotions.size());
+    const auto& list = st.captions.at(st.emotions[k % e]);
+    const auto& [caption, z] = list[(k / e) % list.size()];
+    rep.results[k].caption = caption;
+    rep.results[k].emotion = st.emotions[k % e];
+    setup.skill->SetStyleVector(i, z);
+    env.RefreshTaskObservation(i);
+    motion[i].clear();
+  };
+
   for (int i = 0; i < n_env && next < o.trials; ++i) trial[i] = next++;
+  for (int i = 0; i < n_env; ++i) begin_trial(i);
   int finished = 0;
   const std::vector<sim::ObsSegment> segments = setup.skill->obs_segments();
   std::vector<float> actions(static_cast<size_t>(n_env) * env.action_dim());
@@ -209,7 +314,21 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       ++t.length;
       // Success counts once the task reports itself accomplished (held as long as required).
       if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
-      if (!env.dones()[i]) continue;
+      if (!env.dones()[i]) {
+        if (o.style_eval) {
+          const sim::HumanoidPose& p = env.pose(i);
+          motion::MotionFrame f;
+          f.root_pos = p.root_pos;
+          f.root_rot = p.root_rot;
+          f.dof_pos = p.dof_pos;
+          motion[i].push_back(f);
+        }
+        continue;
+      }
+      if (o.style_eval) {
+        const int label = st.classifier->Classify(motion[i]);
+        t.style = label >= 0 ? st.classifier->labels()[label] : "";
+      }
       t.fell = env.end_reasons()[i] == sim::EndReason::kFall ||
                env.end_reasons()[i] == sim::EndReason::kUnstable;
       t.force_end = env.end_reasons()[i] == sim::EndReason::kTaskTerminate;
@@ -224,6 +343,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       }
       ++finished;
       trial[i] = next < o.trials ? next++ : -1;
+      begin_trial(i);
     }
   }
 
@@ -250,6 +370,24 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.mean_num_steps /= n;
   rep.mean_length /= n;
   rep.time_to_success = successes ? rep.time_to_success / successes : 0.0;
+  if (o.style_eval) {
+    std::map<std::string, int> right, count;
+    int correct = 0;
+    for (const auto& t : rep.results) {
+      ++count[t.emotion];
+      right[t.emotion] += t.style == t.emotion;
+      correct += t.style == t.emotion;
+    }
+    for (const auto& [emotion, c] : count)
+      st.report.per_emotion[emotion] = static_cast<double>(right[emotion]) / c;
+    st.report.accuracy = correct / n;
+    spdlog::info(
+        "style: accuracy {:.3f} over {} emotions (chance {:.3f}); classifier {:.3f} on "
+        "its held-out clips",
+        st.report.accuracy, st.emotions.size(), st.report.chance,
+        st.report.classifier_heldout.accuracy);
+    rep.style = st.report;
+  }
   spdlog::info("eval {}: {} trials, success {:.3f}, falls {:.3f}, contact error {:.3f} m",
                rep.skill, rep.trials, rep.success_rate, rep.fall_rate, rep.contact_error);
   return rep;

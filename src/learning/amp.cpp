@@ -11,6 +11,20 @@ torch::Tensor PenaltyOf(const torch::Tensor& logits, const torch::Tensor& x) {
 }
 }  // namespace
 
+void AppendMismatchedNegatives(const torch::Tensor& demo, const torch::Tensor& demo_style,
+                               double fraction, int64_t num_styles, Rng& rng,
+                               torch::Tensor* negative, torch::Tensor* negative_style) {
+  const int64_t nm = static_cast<int64_t>(fraction * demo.size(0));
+  if (nm <= 0 || num_styles < 2) return;
+  std::vector<int64_t> wrong(nm);
+  const auto ids = demo_style.contiguous();
+  const int64_t* true_ids = ids.data_ptr<int64_t>();
+  for (int64_t i = 0; i < nm; ++i)
+    wrong[i] = (true_ids[i] + 1 + rng.UniformInt(num_styles - 1)) % num_styles;
+  *negative = torch::cat({*negative, demo.slice(0, 0, nm)});
+  *negative_style = torch::cat({*negative_style, torch::tensor(wrong, torch::kInt64)});
+}
+
 torch::Tensor GradientPenalty(Discriminator& disc, const torch::Tensor& demo,
                               const torch::Tensor& demo_style) {
   auto x = demo.detach().requires_grad_(true);

@@ -28,6 +28,12 @@ DiscLoss DiscriminatorLoss(Discriminator& disc, const torch::Tensor& demo,
                            const torch::Tensor& demo_style, const torch::Tensor& negative,
                            const torch::Tensor& negative_style, const AmpConfig& config);
 
+/// SIMS conditional negatives (eq. 7): the first ⌊fraction·n⌋ demo windows, each paired with
+/// another style id (uniform over the other num_styles − 1), appended to the negatives.
+void AppendMismatchedNegatives(const torch::Tensor& demo, const torch::Tensor& demo_style,
+                               double fraction, int64_t num_styles, Rng& rng,
+                               torch::Tensor* negative, torch::Tensor* negative_style);
+
 /// mean over the batch of ‖∇ₓ D(x, z)‖², differentiable (create_graph).
 torch::Tensor GradientPenalty(Discriminator& disc, const torch::Tensor& demo,
                               const torch::Tensor& demo_style);

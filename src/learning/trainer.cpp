@@ -603,16 +603,10 @@ void Trainer::Impl::DiscriminatorLoss(const Batch& b, const torch::Tensor& agent
   const auto di = torch::tensor(demo_idx, torch::kInt64);
   const auto pos = amp_norm->Normalize(demo_pool.index_select(0, di));
   const auto pos_style = demo_pool_styles.index_select(0, di);
-  if (style_dim > 0 && ampc.mismatch_fraction > 0 && style_table.size(0) > 1) {
-    // SIMS conditional negatives: real motion paired with another clip's embedding.
-    const int64_t nm = static_cast<int64_t>(ampc.mismatch_fraction * na);
-    std::vector<int64_t> wrong(nm);
-    const int64_t s = style_table.size(0);
-    const int64_t* true_ids = pos_style.data_ptr<int64_t>();
-    for (int64_t i = 0; i < nm; ++i) wrong[i] = (true_ids[i] + 1 + amp_rng.UniformInt(s - 1)) % s;
-    neg = torch::cat({neg, pos.slice(0, 0, nm)});
-    neg_style = torch::cat({neg_style, torch::tensor(wrong, torch::kInt64)});
-  }
+  // SIMS conditional negatives: real motion paired with another clip's embedding.
+  if (style_dim > 0 && ampc.mismatch_fraction > 0 && style_table.size(0) > 1)
+    AppendMismatchedNegatives(pos, pos_style, ampc.mismatch_fraction, style_table.size(0), amp_rng,
+                              &neg, &neg_style);
   const auto dl =
       learning::DiscriminatorLoss(disc, pos, StyleOf(pos_style), neg, StyleOf(neg_style), ampc);
   (ampc.disc_coef * (world == 1 ? dl.total : dl.total * share)).backward();

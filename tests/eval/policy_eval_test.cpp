@@ -9,6 +9,8 @@
 #include "sims/learning/sim_vec_env.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
+#include "sims/motion/motion_library.h"
+#include "sims/motion/synthetic.h"
 
 namespace sims::eval {
 namespace {
@@ -166,6 +168,50 @@ TEST(PolicyEvalTest, BadInputNamesTheProblem) {
   o.scene_plan.clear();
   o.checkpoint = policy.parent_path() / "missing.pt";
   EXPECT_THROW(EvaluatePolicy(o), Error);
+}
+
+// --style-eval on a style-conditioned walk policy: trial k walks with the z of a held-out
+// caption of emotion k mod E (the bundled motion-text model embeds it), its motion is labelled
+// by the classifier trained on the catalogue's first variants, and the accuracy is the share of
+// trials labelled as their emotion. The classifier's own held-out score comes with it.
+TEST(PolicyEvalTest, StyleEvalCyclesEmotionsAndScoresTheMotion) {
+  motion::SyntheticOptions so;
+  so.variants = 2;
+  so.skills = {"walk"};
+  const fs::path manifest = motion::WriteMotionDataset(
+      motion::GenerateSyntheticClips(so), sims::testing::TempDir("eval_style_clips"), "walk");
+  task::SkillConfig sc = WalkConfig();
+  sc.motion.manifest = manifest.string();
+  sc.motion.skills = {"walk"};
+  sc.style_conditioned = true;
+  const fs::path policy = TinyPolicy(sc, 100, "eval_style");
+  PolicyEvalOptions o = TwoEnvOptions(policy, 12);
+  o.seed = 2;
+  o.style_eval = true;
+  const PolicyEvalReport r = EvaluatePolicy(o);
+  ASSERT_TRUE(r.style.has_value());
+  const StyleEvalReport& st = *r.style;
+  ASSERT_GE(st.emotions.size(), 6u);
+  EXPECT_GT(st.classifier_heldout.total, 0);
+  EXPECT_GT(st.classifier_heldout.accuracy, 0.8);
+  int right = 0;
+  for (size_t k = 0; k < r.results.size(); ++k) {
+    const TrialResult& t = r.results[k];
+    EXPECT_EQ(t.emotion, st.emotions[k % st.emotions.size()]) << k;
+    EXPECT_FALSE(t.caption.empty());
+    right += t.style == t.emotion;
+  }
+  EXPECT_DOUBLE_EQ(st.accuracy, right / 12.0);
+  const nlohmann::json j = r.ToJson();
+  for (const char* key :
+       {"style_accuracy", "style_per_emotion", "style_chance", "style_classifier_heldout"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_TRUE(j["results"][0].contains("caption"));
+  // A caption file without captions of two emotions is refused, naming it.
+  const fs::path bad = sims::testing::TempDir("eval_style_bad") / "captions.json";
+  WriteJsonFile(bad, {{"queries", {{{"caption", "a person walks"}, {"clip", "walk_normal"}}}}});
+  o.style_captions = bad;
+  ExpectError([&] { EvaluatePolicy(o); }, {"captions.json", "two emotions"});
 }
 
 TEST(PolicyEvalTest, SitOnHeldOutObjects) {

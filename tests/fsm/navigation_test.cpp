@@ -46,7 +46,9 @@ TEST(NavigationTest, PathGoesAroundTheWall) {
   double max_y = -1e9;
   for (const auto& p : wp) {
     EXPECT_LE((p - prev).norm(), 1.5 + 1e-9);
-    if (&p != &wp.back()) EXPECT_TRUE(grid.SegmentFree(prev, p) || (p - prev).norm() < 0.2);
+    if (&p != &wp.back()) {
+      EXPECT_TRUE(grid.SegmentFree(prev, p) || (p - prev).norm() < 0.2);
+    }
     max_y = std::max(max_y, p.y());
     prev = p;
   }

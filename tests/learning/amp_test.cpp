@@ -104,5 +104,33 @@ TEST(AmpTest, ReplayBufferFillsThenSubsamples) {
   EXPECT_GT(twos, 0.4);  // ~4 fill slots + ~10 random replacements of 10 slots
 }
 
+// The conditional discriminator's negatives include real demo motion paired with a wrong z: a
+// quarter of the demo windows, each with a style id other than its own, every other id used.
+TEST(AmpTest, MismatchedNegativesPairRealMotionWithAnotherStyle) {
+  const int64_t n = 400, styles = 5;
+  const auto demo = torch::arange(n * 2, torch::kFloat32).reshape({n, 2});
+  const auto demo_style = torch::arange(n, torch::kInt64).remainder(styles);
+  auto neg = torch::zeros({10, 2});
+  auto neg_style = torch::zeros({10}, torch::kInt64);
+  Rng rng(4);
+  AppendMismatchedNegatives(demo, demo_style, 0.25, styles, rng, &neg, &neg_style);
+  ASSERT_EQ(neg.size(0), 10 + n / 4);
+  ASSERT_EQ(neg_style.size(0), 10 + n / 4);
+  EXPECT_TRUE(torch::equal(neg.slice(0, 10), demo.slice(0, 0, n / 4)));
+  std::vector<int> used(styles, 0);
+  for (int64_t i = 0; i < n / 4; ++i) {
+    const int64_t wrong = neg_style[10 + i].item<int64_t>();
+    ASSERT_GE(wrong, 0);
+    ASSERT_LT(wrong, styles);
+    EXPECT_NE(wrong, demo_style[i].item<int64_t>());
+    ++used[wrong];
+  }
+  for (int s = 0; s < styles; ++s) EXPECT_GT(used[s], 5) << s;
+  // One style, or no fraction: nothing to mismatch.
+  AppendMismatchedNegatives(demo, demo_style, 0.25, 1, rng, &neg, &neg_style);
+  AppendMismatchedNegatives(demo, demo_style, 0.0, styles, rng, &neg, &neg_style);
+  EXPECT_EQ(neg.size(0), 10 + n / 4);
+}
+
 }  // namespace
 }  // namespace sims::learning

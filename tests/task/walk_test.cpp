@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "sims/core/error.h"
+#include "task/task_test_util.h"
 
 namespace sims::task {
 namespace {
@@ -95,6 +96,49 @@ TEST_F(WalkEnvTest, SnapshotRestoresTargets) {
   }
   EXPECT_EQ(0, std::memcmp(env_->observations(), env2.observations(),
                            sizeof(float) * 4 * env_->obs_dim()));
+}
+
+// z reaches the policy input: a style-conditioned skill puts its episode's clip z in the last
+// 64 observation values, a caption's z once set (run time), and zeros when unconditioned.
+TEST(WalkStyleTest, StyleVectorReachesTheObservation) {
+  for (const bool conditioned : {true, false}) {
+    SkillConfig c;
+    c.motion.manifest = testing::SyntheticManifest({"walk"});
+    c.motion.skills = {"walk"};
+    c.style_conditioned = conditioned;
+    auto s = testing::MakeSkillEnv(c, 3);
+    ASSERT_TRUE(s.setup.context.styles);
+    const int at = s.env->obs_dim() - kStyleDim;
+    const std::vector<sim::ObsSegment> segs = s.setup.skill->obs_segments();
+    ASSERT_EQ(segs.back().name, "z");
+    ASSERT_EQ(segs.back().offset, at - sim::kSelfObsDim);
+    auto z_of = [&](int i) {
+      return Eigen::Map<const Eigen::VectorXf>(s.env->observations() + i * s.env->obs_dim() + at,
+                                               kStyleDim);
+    };
+    for (int i = 0; i < 3; ++i) {
+      const int style = s.setup.skill->style_id(i);
+      ASSERT_GE(style, 0);
+      if (conditioned) {
+        EXPECT_EQ(z_of(i), s.setup.context.styles->z(style)) << i;
+      } else {
+        EXPECT_EQ(z_of(i).squaredNorm(), 0.0f) << i;
+      }
+    }
+    Eigen::VectorXf caption = Eigen::VectorXf::LinSpaced(kStyleDim, -1, 1).normalized();
+    s.setup.skill->SetStyleVector(1, caption);
+    s.env->RefreshTaskObservation(1);
+    if (conditioned) {
+      EXPECT_EQ(z_of(1), caption);
+    } else {
+      EXPECT_EQ(z_of(1).squaredNorm(), 0.0f);
+    }
+    s.setup.skill->SetStyleVector(1, Eigen::VectorXf());
+    s.env->RefreshTaskObservation(1);
+    if (conditioned) {
+      EXPECT_EQ(z_of(1), s.setup.context.styles->z(s.setup.skill->style_id(1)));
+    }
+  }
 }
 
 }  // namespace

@@ -10,14 +10,20 @@
 //            a fall.
 //   unified: random chains on held-out objects, or the steps of a UniHSI ScenePlan
 //            (n steps within n × 10 s); success = every step passed.
+// With style_eval, each trial's z comes from a held-out caption (cycling over emotions) and
+// the trial's motion is labelled by a StyleClassifier trained on the skill's clips (generator
+// variants held out and scored as its own accuracy); style accuracy = label == emotion.
 // Trials run on parallel environments; each env runs trial after trial (deterministic for a
 // seed). Metrics per trial are taken at the step that ends it (before the env resets).
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "sims/eval/style_classifier.h"
 #include "sims/sim/task_hook.h"
 
 #include <nlohmann/json.hpp>
@@ -38,6 +44,11 @@ struct PolicyEvalOptions {
   bool held_out = true;                ///< Held-out object dimensions.
   sim::ObsAblation ablation;           ///< Inputs withheld from the policy (--no-text, ...).
   double reference_starts = 0;         ///< Share of trials started from motion clips (0–1).
+  /// Style evaluation (--style-eval): trial k walks with the z of a caption the motion–text
+  /// model never trained on, cycling over the emotions, and its motion is classified.
+  bool style_eval = false;
+  std::filesystem::path style_captions;  ///< {"queries": [{caption, clip}]} ("" = test set).
+  std::filesystem::path style_model;     ///< Motion–text model ("" = the policy's or default).
 };
 
 /// One trial.
@@ -51,28 +62,43 @@ struct TrialResult {
   int steps_completed = 0;       ///< Plan steps passed (single-step skills: 1 on success).
   int num_steps = 1;             ///< Plan steps of the trial.
   int length = 0;                ///< Control steps the trial ran.
+  std::string caption;           ///< Style evaluation: the caption whose z the policy saw.
+  std::string emotion;           ///< ... its emotion.
+  std::string style;             ///< ... the classifier's label of the motion ("" = too short).
+};
+
+/// Style evaluation results (PolicyEvalOptions::style_eval).
+struct StyleEvalReport {
+  std::string captions;                       ///< Caption file used.
+  std::string model;                          ///< Motion–text model folder.
+  std::vector<std::string> emotions;          ///< Emotions with captions, in trial order.
+  double accuracy = 0;                        ///< Trials classified as their emotion.
+  std::map<std::string, double> per_emotion;  ///< Emotion → accuracy.
+  double chance = 0;                          ///< 1 / classifier labels.
+  StyleAccuracy classifier_heldout;           ///< The classifier on its held-out clips.
 };
 
 /// Aggregated results.
 struct PolicyEvalReport {
-  std::string skill;                 ///< Evaluated skill.
-  std::string checkpoint;            ///< Policy file.
-  std::string scene;                 ///< Scene name (training ground or plan).
-  int trials = 0;                    ///< Trials run.
-  uint64_t seed = 0;                 ///< Seed.
-  double control_dt = 1.0 / 30.0;    ///< Seconds per control step.
-  double success_rate = 0;           ///< Fraction of successful trials.
-  double fall_rate = 0;              ///< Fraction of trials that ended by a fall.
-  double force_end_rate = 0;         ///< Fraction ended by excessive contact force.
-  double contact_error = 0;          ///< Mean final goal error (m).
-  double min_contact_error = 0;      ///< Mean over trials of the smallest goal error (m).
-  double success_steps = 0;          ///< Mean plan steps passed per trial.
-  double mean_num_steps = 1;         ///< Mean plan steps per trial.
-  double time_to_success = 0;        ///< Mean seconds to first success (successful trials).
-  double mean_length = 0;            ///< Mean trial length (control steps).
-  sim::ObsAblation ablation;         ///< Inputs that were withheld.
-  double reference_starts = 0;       ///< Share of trials asked to start from motion clips.
-  std::vector<TrialResult> results;  ///< Per trial.
+  std::string skill;                     ///< Evaluated skill.
+  std::string checkpoint;                ///< Policy file.
+  std::string scene;                     ///< Scene name (training ground or plan).
+  int trials = 0;                        ///< Trials run.
+  uint64_t seed = 0;                     ///< Seed.
+  double control_dt = 1.0 / 30.0;        ///< Seconds per control step.
+  double success_rate = 0;               ///< Fraction of successful trials.
+  double fall_rate = 0;                  ///< Fraction of trials that ended by a fall.
+  double force_end_rate = 0;             ///< Fraction ended by excessive contact force.
+  double contact_error = 0;              ///< Mean final goal error (m).
+  double min_contact_error = 0;          ///< Mean over trials of the smallest goal error (m).
+  double success_steps = 0;              ///< Mean plan steps passed per trial.
+  double mean_num_steps = 1;             ///< Mean plan steps per trial.
+  double time_to_success = 0;            ///< Mean seconds to first success (successful trials).
+  double mean_length = 0;                ///< Mean trial length (control steps).
+  sim::ObsAblation ablation;             ///< Inputs that were withheld.
+  double reference_starts = 0;           ///< Share of trials asked to start from motion clips.
+  std::optional<StyleEvalReport> style;  ///< Present with --style-eval.
+  std::vector<TrialResult> results;      ///< Per trial.
 
   /// JSON with the aggregates and the per-trial results.
   nlohmann::json ToJson() const;
