@@ -1,12 +1,17 @@
 #include "sims/story/story.h"
 
+#include <map>
+#include <memory>
+#include <set>
 #include <utility>
 
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
+#include "sims/eval/style_classifier.h"
 #include "sims/io/story_outputs.h"
 #include "sims/language/embedding_bank.h"
+#include "sims/motion/motion_library.h"
 #include "sims/planner/planner.h"
 #include "sims/planner/sentence.h"
 #include "sims/scene/loaders.h"
@@ -146,6 +151,91 @@ StoryRun RunStory(const PreparedStory& story, const fsm::PolicySet& policies,
   return run;
 }
 
+namespace {
+
+// Per script keyframe: the caption, the emotion the script gives it, the emotion of the clip
+// its z is nearest to, and the style a classifier trained on the synthetic clips of that skill
+// measures in the keyframe's motion ("" where it cannot: no clips of two emotions, or under
+// 3 s of motion).
+nlohmann::json KeyframeStyles(const StoryRun& run) {
+  nlohmann::json out = nlohmann::json::array();
+  const std::filesystem::path manifest = DataPath("motions/synthetic/manifest.json");
+  std::unique_ptr<motion::MotionLibrary> lib;
+  if (std::filesystem::exists(manifest) && run.humanoid)
+    lib = std::make_unique<motion::MotionLibrary>(
+        motion::MotionLibrary::Load(manifest, run.humanoid));
+  std::map<std::string, std::string> emotion_of;  // clip name → emotion
+  if (lib)
+    for (int i = 0; i < lib->num_clips(); ++i)
+      emotion_of[lib->clip(i).meta().name] = lib->clip(i).meta().emotion;
+  // Bank keys are "<name>" or "<mirrored name>#mirror"; a mirror keeps its source's emotion.
+  auto emotion_of_key = [&](std::string key) -> std::string {
+    key = key.substr(0, key.find('#'));
+    for (int pass = 0; pass < 2; ++pass) {
+      const auto it = emotion_of.find(key);
+      if (it != emotion_of.end()) return it->second;
+      const std::string suffix = "_mirror";
+      if (key.size() > suffix.size() &&
+          key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+        key.resize(key.size() - suffix.size());
+    }
+    return "";
+  };
+  std::map<std::string, std::unique_ptr<eval::StyleClassifier>> classifiers;
+  auto classifier = [&](const std::string& skill) -> const eval::StyleClassifier* {
+    auto it = classifiers.find(skill);
+    if (it != classifiers.end()) return it->second.get();
+    std::unique_ptr<eval::StyleClassifier> c;
+    if (lib) {
+      std::vector<const motion::MotionClip*> clips;
+      std::set<std::string> emotions;
+      for (int i = 0; i < lib->num_clips(); ++i)
+        if (lib->clip(i).meta().skill == skill && !eval::IsClipVariant(lib->clip(i).meta()) &&
+            lib->clip(i).num_frames() >= 60) {
+          clips.push_back(&lib->clip(i));
+          emotions.insert(lib->clip(i).meta().emotion);
+        }
+      if (emotions.size() >= 2)
+        c = std::make_unique<eval::StyleClassifier>(eval::StyleClassifier::Train(clips));
+    }
+    return (classifiers[skill] = std::move(c)).get();
+  };
+  const auto& instructions = run.story.instructions;
+  for (const io::KeyframeAnnotation& k : run.record.keyframes) {
+    nlohmann::json e = {{"keyframe", k.index},  {"skill", k.skill},     {"caption", k.caption},
+                        {"emotion", k.emotion}, {"z_nearest_clip", ""}, {"z_emotion", ""},
+                        {"measured_style", ""}};
+    for (size_t i = 0; i < instructions.size() && i < run.story.styles.size(); ++i) {
+      if (instructions[i].keyframe != k.index) continue;
+      const auto& clips = run.story.styles[i]["clips"];
+      if (!clips.empty()) {
+        const std::string clip = clips[0]["clip"];
+        e["z_nearest_clip"] = clip;
+        e["z_emotion"] = emotion_of_key(clip);
+      }
+      break;
+    }
+    const eval::StyleClassifier* c = k.start_frame >= 0 ? classifier(k.skill) : nullptr;
+    if (c) {
+      std::vector<motion::MotionFrame> frames;
+      for (int f = k.start_frame; f <= k.end_frame && f < run.record.num_frames(); ++f) {
+        const io::RecordFrame& r = run.record.frames[f];
+        motion::MotionFrame m;
+        m.root_pos = r.root_pos;
+        m.root_rot = r.root_rot;
+        m.dof_pos = r.dof_pos;
+        frames.push_back(m);
+      }
+      const int label = c->Classify(frames);
+      if (label >= 0) e["measured_style"] = c->labels()[label];
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace
+
 nlohmann::json StoryRunToJson(const StoryRun& run) {
   nlohmann::json j = fsm::StoryResultToJson(run.result);
   j["planner"] = run.story.plan.planner;
@@ -154,6 +244,7 @@ nlohmann::json StoryRunToJson(const StoryRun& run) {
   j["seed"] = run.options.seed;
   j["policies"] = run.policies.string();
   j["styles"] = run.story.styles;
+  j["keyframe_styles"] = KeyframeStyles(run);
   return j;
 }
 

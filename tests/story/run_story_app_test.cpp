@@ -47,6 +47,15 @@ TEST(RunStoryAppTest, BundledPoliciesWriteEveryOutputWithValidContent) {
   EXPECT_LT(kf["contact_error"].get<double>(), 0.5) << kf.dump();
   EXPECT_EQ(kf["falls"], 0);
   EXPECT_EQ(result["success_rate"], 1.0);
+  // Per keyframe: the caption, the emotion of the clip its z (bundled motion-text model) is
+  // nearest to, and the style measured in the motion ("" when under 3 s, as here it may be).
+  ASSERT_EQ(result["keyframe_styles"].size(), 1u);
+  const auto& ks = result["keyframe_styles"][0];
+  EXPECT_EQ(ks["caption"], kf["caption"]);
+  EXPECT_EQ(ks["skill"], "walk");
+  EXPECT_FALSE(ks["z_nearest_clip"].get<std::string>().empty()) << ks.dump();
+  EXPECT_FALSE(ks["z_emotion"].get<std::string>().empty()) << ks.dump();
+  EXPECT_TRUE(ks.contains("measured_style"));
 
   const auto motion = io::LoadMotionRecord(out / "motion.json");  // validates frames/keyframes
   EXPECT_DOUBLE_EQ(motion.fps, 30.0);
