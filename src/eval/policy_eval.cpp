@@ -7,6 +7,8 @@
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
+#include "sims/eval/motion_metrics.h"
+#include "sims/io/motion_record.h"
 #include "sims/language/embedding_bank.h"
 #include "sims/language/motion_text.h"
 #include "sims/learning/text_styles.h"
@@ -91,6 +93,8 @@ ResolvedConfig ResolveConfig(const PolicyEvalOptions& o, const learning::Policy&
 // What --style-eval needs: the classifier, and per emotion the held-out captions' z.
 struct StyleTrials {
   std::unique_ptr<StyleClassifier> classifier;
+  Eigen::MatrixXd reference;               // pose features of the skill's clips (SIMS Tab. 3)
+  std::vector<Eigen::MatrixXd> generated;  // ... of each trial's motion
   std::vector<std::string> emotions;
   std::map<std::string, std::vector<std::pair<std::string, Eigen::VectorXf>>> captions;
   StyleEvalReport report;
@@ -113,6 +117,19 @@ StyleTrials PrepareStyleTrials(const PolicyEvalOptions& o, const task::SkillConf
   if (train.empty())
     ThrowInputError(sc.motion.manifest, "clips", "clips of skill '" + sc.skill + "'", "none");
   st.classifier = std::make_unique<StyleClassifier>(StyleClassifier::Train(train));
+  std::vector<Eigen::MatrixXd> parts;
+  Eigen::Index rows = 0;
+  for (const auto* list : {&train, &heldout})
+    for (const motion::MotionClip* c : *list) {
+      parts.push_back(PoseFeatures(io::RecordFromClip(*c, 30.0), 3));
+      rows += parts.back().rows();
+    }
+  st.reference.resize(rows, parts.empty() ? 0 : parts.front().cols());
+  rows = 0;
+  for (const auto& p : parts) {
+    st.reference.middleRows(rows, p.rows()) = p;
+    rows += p.rows();
+  }
   st.report.classifier_heldout = st.classifier->Score(heldout, /*segment_frames=*/90);
   st.report.chance = 1.0 / static_cast<double>(st.classifier->labels().size());
 
@@ -200,6 +217,9 @@ nlohmann::json PolicyEvalReport::ToJson() const {
     out["style_emotions"] = style->emotions;
     out["style_captions"] = style->captions;
     out["style_model"] = style->model;
+    out["fid"] = style->fid;
+    out["apd"] = style->apd;
+    out["reference_apd"] = style->reference_apd;
     out["style_classifier_heldout"] = {{"accuracy", h.accuracy},
                                        {"per_label", h.per_label},
                                        {"segments", h.motions},
@@ -328,6 +348,15 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       if (o.style_eval) {
         const int label = st.classifier->Classify(motion[i]);
         t.style = label >= 0 ? st.classifier->labels()[label] : "";
+        io::MotionRecordBuilder record(setup.context.humanoid);
+        for (const motion::MotionFrame& f : motion[i]) {
+          sim::HumanoidPose p;
+          p.root_pos = f.root_pos;
+          p.root_rot = f.root_rot;
+          p.dof_pos = f.dof_pos;
+          record.AddFrame(p);
+        }
+        if (!motion[i].empty()) st.generated.push_back(PoseFeatures(record.Finish(), 3));
       }
       t.fell = env.end_reasons()[i] == sim::EndReason::kFall ||
                env.end_reasons()[i] == sim::EndReason::kUnstable;
@@ -381,6 +410,19 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     for (const auto& [emotion, c] : count)
       st.report.per_emotion[emotion] = static_cast<double>(right[emotion]) / c;
     st.report.accuracy = correct / n;
+    Eigen::Index rows = 0;
+    for (const auto& g : st.generated) rows += g.rows();
+    Eigen::MatrixXd gen(rows, st.reference.cols());
+    rows = 0;
+    for (const auto& g : st.generated) {
+      gen.middleRows(rows, g.rows()) = g;
+      rows += g.rows();
+    }
+    if (gen.rows() > 1 && st.reference.rows() > 1) {
+      st.report.fid = FrechetDistance(gen, st.reference);
+      st.report.apd = AveragePairwiseDistance(gen);
+      st.report.reference_apd = AveragePairwiseDistance(st.reference);
+    }
     spdlog::info(
         "style: accuracy {:.3f} over {} emotions (chance {:.3f}); classifier {:.3f} on "
         "its held-out clips",

@@ -76,6 +76,9 @@ struct StyleEvalReport {
   std::map<std::string, double> per_emotion;  ///< Emotion → accuracy.
   double chance = 0;                          ///< 1 / classifier labels.
   StyleAccuracy classifier_heldout;           ///< The classifier on its held-out clips.
+  double fid = 0;            ///< FID of the trials' pose features against the skill's clips.
+  double apd = 0;            ///< APD of the trials' pose features (diversity).
+  double reference_apd = 0;  ///< APD of the clips' pose features.
 };
 
 /// Aggregated results.
