@@ -11,6 +11,7 @@
 #include "common/test_util.h"
 #include "planner/fake_llm_server.h"
 #include "sims/core/environment.h"
+#include "sims/core/http.h"
 #include "sims/planner/llm_client.h"
 #include "sims/planner/planner.h"
 
@@ -188,20 +189,21 @@ TEST(HttpClientTest, DecodesChunkedRepliesAndParsesUrls) {
   }
   chunked += "0\r\n\r\n";
   FakeServer server({{chunked}});
-  HttpResponse r = HttpPost(server.url() + "/chat/completions", {}, "{}", 5.0);
+  http::Response r = http::Post(server.url() + "/chat/completions", {}, "{}", 5.0);
   EXPECT_EQ(r.status, 200);
   EXPECT_EQ(r.body, body);
 
-  HttpUrl u = ParseHttpUrl("http://localhost:8080/v1/chat/completions?x=1");
+  http::Url u = http::ParseUrl("http://localhost:8080/v1/chat/completions?x=1");
   EXPECT_EQ(u.host, "localhost");
   EXPECT_EQ(u.port, 8080);
   EXPECT_EQ(u.path, "/v1/chat/completions?x=1");
-  EXPECT_EQ(ParseHttpUrl("http://[::1]:9000/").host, "::1");
+  EXPECT_EQ(http::ParseUrl("http://[::1]:9000/").host, "::1");
   EXPECT_EQ(ChatCompletionsUrl("http://h:1/v1/"), "http://h:1/v1/chat/completions");
   EXPECT_EQ(ChatCompletionsUrl("http://h:1"), "http://h:1/v1/chat/completions");
   EXPECT_EQ(ChatCompletionsUrl("http://h/api/chat/completions"), "http://h/api/chat/completions");
-  EXPECT_THROW(ParseHttpUrl("ftp://h"), LlmError);
-  EXPECT_THROW(ParseHttpUrl("http://h:99999/"), LlmError);
+  EXPECT_THROW(http::ParseUrl("ftp://h"), http::HttpError);
+  EXPECT_THROW(http::ParseUrl("http://h:99999/"), http::HttpError);
+  EXPECT_THROW(ChatCompletionsUrl("ftp://h"), LlmError);  // the planner's error, for fall-back
   EXPECT_EQ(StripToJson("Sure!\n```json\n{\"a\": 1}\n```\n"), "{\"a\": 1}");
 }
 

@@ -1,6 +1,7 @@
 // A minimal static-file HTTP/1.1 server for looking at story folders (the web viewer needs
 // HTTP: browsers refuse ES modules and fetch() from file://). GET and HEAD only, one thread
-// per connection, files under the root only, loopback by default.
+// per connection (core/http.h, the one HTTP layer), files under the root only, loopback by
+// default.
 #pragma once
 
 #include <filesystem>

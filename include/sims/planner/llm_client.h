@@ -1,7 +1,7 @@
 // A minimal OpenAI-compatible chat-completions client (llama.cpp server, vLLM, Ollama's /v1,
-// any proxy) over plain HTTP/1.1 on POSIX sockets: no new dependency, no TLS. https endpoints
-// are refused with a clear message (run a local server, or a plain-HTTP proxy in front of a
-// remote one). Every failure is a sims::Error (LlmError) so the planner can fall back.
+// any proxy) over the project's HTTP layer (core/http.h): no new dependency, no TLS. https
+// endpoints are refused with a clear message (run a local server, or a plain-HTTP proxy in front of
+// a remote one). Every failure is a sims::Error (LlmError) so the planner can fall back.
 #pragma once
 
 #include <cstdint>
@@ -71,30 +71,9 @@ class LlmError : public Error {
   Kind kind_;
 };
 
-/// Parts of an http:// URL.
-struct HttpUrl {
-  std::string host;        ///< Host name or address.
-  int port = 80;           ///< Port.
-  std::string path = "/";  ///< Path (with query).
-};
-
-/// Parses "http://host[:port][/path]"; https and other schemes throw LlmError(kConfig).
-HttpUrl ParseHttpUrl(const std::string& url);
-
 /// The chat-completions URL for a base endpoint ("…/v1" → "…/v1/chat/completions"; a URL that
 /// already ends in /chat/completions is kept; a bare host gets /v1/chat/completions).
 std::string ChatCompletionsUrl(const std::string& endpoint);
-
-/// An HTTP response.
-struct HttpResponse {
-  int status = 0;    ///< Status code.
-  std::string body;  ///< Body (chunked transfer decoded).
-};
-
-/// POSTs `body` and waits at most `timeout_s` for the whole exchange.
-HttpResponse HttpPost(const std::string& url,
-                      const std::vector<std::pair<std::string, std::string>>& headers,
-                      const std::string& body, double timeout_s);
 
 /// One chat message.
 struct ChatMessage {
