@@ -3,13 +3,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/bench/env_bench.h"
 #include "sims/core/app.h"
 #include "sims/core/log.h"
-#include "sims/sim/bench.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Benchmark the batched env against a raw mj_step loop (prints JSON)"};
-  sims::sim::EnvBenchOptions o;
+  sims::bench::EnvBenchOptions o;
   bool json = false;
   app.add_flag("--json", json, "print only the JSON result");
   app.add_option("--envs", o.num_envs, "environments")->check(CLI::PositiveNumber);
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (json) flags.default_log_level = "warn";
   return sims::RunApp(flags, [&] {
-    const auto result = sims::sim::RunEnvBenchmark(o);
+    const auto result = sims::bench::RunEnvBenchmark(o);
     if (!json) spdlog::info("env/raw ratio at 1 thread: {:.3f}", result["ratio"].get<double>());
     std::cout << result.dump(json ? -1 : 2) << std::endl;
     return 0;

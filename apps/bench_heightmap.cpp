@@ -4,13 +4,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/bench/heightmap_bench.h"
 #include "sims/core/app.h"
 #include "sims/core/log.h"
-#include "sims/sim/heightmap_bench.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Benchmark heightmap sampling against the physics step (prints JSON)"};
-  sims::sim::HeightmapBenchOptions o;
+  sims::bench::HeightmapBenchOptions o;
   bool json = false;
   app.add_flag("--json", json, "print only the JSON result");
   app.add_option("--rays", o.rays, "down-rays for the raw Embree rate")->check(CLI::PositiveNumber);
@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (json) flags.default_log_level = "warn";
   return sims::RunApp(flags, [&] {
-    const auto result = sims::sim::RunHeightmapBenchmark(o);
+    const auto result = sims::bench::RunHeightmapBenchmark(o);
     if (!json)
       spdlog::info("sampler/physics ratio: {:.4f} (target < 0.1)", result["ratio"].get<double>());
     std::cout << result.dump(json ? -1 : 2) << std::endl;

@@ -3,9 +3,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/bench/train_bench.h"
 #include "sims/core/app.h"
 #include "sims/core/paths.h"
-#include "sims/learning/bench.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Benchmark the learner against sgemm on this machine"};
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (json) flags.default_log_level = "warn";
   return sims::RunApp(flags, [&] {
-    const auto r = sims::learning::RunLearnerBenchmark(config, iterations);
+    const auto r = sims::bench::RunLearnerBenchmark(config, iterations);
     std::cout << r.dump(json ? -1 : 2) << std::endl;
     return 0;
   });

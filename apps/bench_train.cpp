@@ -9,15 +9,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/bench/train_bench.h"
 #include "sims/core/app.h"
 #include "sims/core/config.h"
 #include "sims/core/parallel.h"
 #include "sims/core/paths.h"
-#include "sims/learning/bench.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Benchmark training throughput as a user's train_policy run sees it"};
-  sims::learning::TrainBenchOptions o;
+  sims::bench::TrainBenchOptions o;
   std::string config = sims::ConfigPath("skills/sit.json").string();
   std::string worker_out;
   bool json = false;
@@ -49,11 +49,11 @@ int main(int argc, char** argv) {
       if (auto dist = sims::learning::DistributedConfigFromEnvironment(std::getenv))
         o.comm = sims::learning::ConnectProcessGroup(*dist);
       o.references = false;
-      sims::WriteJsonFile(worker_out, sims::learning::RunTrainBenchmark(o));
+      sims::WriteJsonFile(worker_out, sims::bench::RunTrainBenchmark(o));
       return 0;
     }
     if (ranks > 0) {
-      sims::learning::RankBenchOptions r;
+      sims::bench::RankBenchOptions r;
       r.train = o;
       r.ranks = ranks;
       r.repeats = repeats;
@@ -66,11 +66,11 @@ int main(int argc, char** argv) {
                   std::to_string(o.iterations > 0 ? o.iterations : 10)};
       if (o.num_envs > 0)
         r.worker.insert(r.worker.end(), {"--num-envs", std::to_string(o.num_envs)});
-      const auto result = sims::learning::RunRankScalingBenchmark(r);
+      const auto result = sims::bench::RunRankScalingBenchmark(r);
       std::cout << result.dump(json ? -1 : 2) << std::endl;
       return 0;
     }
-    const auto r = sims::learning::RunTrainBenchmark(o);
+    const auto r = sims::bench::RunTrainBenchmark(o);
     std::cout << r.dump(json ? -1 : 2) << std::endl;
     return 0;
   });

@@ -2,10 +2,10 @@
 // pose under random perturbations with a fixed seed; writes DIR/result.json + DIR/config.json.
 #include <CLI/CLI.hpp>
 
+#include "sims/bench/demo.h"
 #include "sims/core/app.h"
 #include "sims/core/config.h"
 #include "sims/core/paths.h"
-#include "sims/sim/demo.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Run the batched humanoid environment on flat ground and write a result file"};
@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   return sims::RunApp(flags, [&] {
     auto config = sims::LoadConfig<sims::sim::EnvConfig>(config_path);
     config.seed = seed;
-    sims::sim::RunStandingDemo(config, steps, noise, out);
+    sims::bench::RunStandingDemo(config, steps, noise, out);
     return 0;
   });
 }

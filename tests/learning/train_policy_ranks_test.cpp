@@ -13,7 +13,7 @@
 #include "sims/core/config.h"
 #include "sims/io/subprocess.h"
 #include "sims/io/training_report.h"
-#include "sims/learning/bench.h"
+#include "sims/learning/distributed.h"
 
 namespace sims::learning {
 namespace {

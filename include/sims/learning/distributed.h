@@ -12,6 +12,10 @@
 
 namespace sims::learning {
 
+/// A TCP port on 127.0.0.1 that was free a moment ago (the kernel picks it): a rendezvous
+/// port for ranks started on this machine.
+int FreeLoopbackPort();
+
 /// Rank, world size and rendezvous of one data-parallel process.
 struct DistributedConfig {
   int rank = 0;                           ///< This process, 0 ≤ rank < world_size.

@@ -1,4 +1,4 @@
-#include "sims/sim/bench.h"
+#include "sims/bench/env_bench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,15 @@
 #include "sims/core/parallel.h"
 #include "sims/sim/env.h"
 
-namespace sims::sim {
+namespace sims::bench {
+
+using sim::BatchedEnv;
+using sim::BuildModel;
+using sim::EnvConfig;
+using sim::Humanoid;
+using sim::kNumDofs;
+using sim::MakeData;
+using sim::MjDataPtr;
 
 namespace {
 
@@ -131,4 +139,4 @@ nlohmann::json RunEnvBenchmark(const EnvBenchOptions& o) {
       {"num_envs", o.num_envs},  {"control_steps", o.control_steps}, {"per_threads", per_threads}};
 }
 
-}  // namespace sims::sim
+}  // namespace sims::bench

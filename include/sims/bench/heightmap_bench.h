@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace sims::sim {
+namespace sims::bench {
 
 /// Benchmark settings.
 struct HeightmapBenchOptions {
@@ -23,4 +23,4 @@ struct HeightmapBenchOptions {
 /// ratio (= sampler / physics) and settings.
 nlohmann::json RunHeightmapBenchmark(const HeightmapBenchOptions& options);
 
-}  // namespace sims::sim
+}  // namespace sims::bench

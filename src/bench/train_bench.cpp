@@ -1,4 +1,4 @@
-#include "sims/learning/bench.h"
+#include "sims/bench/train_bench.h"
 
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -10,6 +10,7 @@
 
 #include <torch/torch.h>
 
+#include "sims/bench/env_bench.h"
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
 #include "sims/io/subprocess.h"
@@ -18,9 +19,20 @@
 #include "sims/learning/text_styles.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
-#include "sims/sim/bench.h"
 
-namespace sims::learning {
+namespace sims::bench {
+
+using learning::ApplyStyleModel;
+using learning::DemoSource;
+using learning::FreeLoopbackPort;
+using learning::IterationStats;
+using learning::IterationTiming;
+using learning::MotionDemoSource;
+using learning::RunTraining;
+using learning::SimVecEnv;
+using learning::TrainConfig;
+using learning::Trainer;
+using learning::TrainOptions;
 
 double MeasureSgemmGflops(int n, int repeats) {
   torch::set_num_threads(ThreadCount());
@@ -187,7 +199,7 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   // References measured in this run: raw mj_step on the skill's own scene, and sgemm.
   auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
   sim::BatchedEnv ref_env(setup.context.humanoid, config.env, setup.skill);
-  const double raw = sim::RawStepsPerSecondFrom(ref_env, ThreadCount(), 30);
+  const double raw = RawStepsPerSecondFrom(ref_env, ThreadCount(), 30);
   const double sgemm = MeasureSgemmGflops();
   const double substeps = config.env.substeps;
   const double ceiling = raw / substeps;
@@ -244,21 +256,6 @@ std::vector<nlohmann::json> RunWorkers(const RankBenchOptions& o, int count, boo
 }
 
 }  // namespace
-
-int FreeLoopbackPort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  SIMS_CHECK_MSG(fd >= 0, "socket() failed");
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  addr.sin_port = 0;
-  socklen_t len = sizeof(addr);
-  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0 &&
-                  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0;
-  close(fd);
-  SIMS_CHECK_MSG(ok, "could not find a free loopback port");
-  return ntohs(addr.sin_port);
-}
 
 nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& o) {
   if (o.ranks < 2) ThrowInputError("--ranks", "ranks", "at least 2", std::to_string(o.ranks));
@@ -351,4 +348,4 @@ nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& o) {
           {"workers", {{"single", single}, {"independent", indep}, {"ranked", ranks}}}};
 }
 
-}  // namespace sims::learning
+}  // namespace sims::bench

@@ -1,11 +1,18 @@
-#include "sims/sim/demo.h"
+#include "sims/bench/demo.h"
 
 #include <chrono>
 
 #include "sims/core/log.h"
 #include "sims/core/progress.h"
 
-namespace sims::sim {
+namespace sims::bench {
+
+using sim::BatchedEnv;
+using sim::BuildModel;
+using sim::EnvConfig;
+using sim::EnvStats;
+using sim::Humanoid;
+using sim::kNumDofs;
 
 nlohmann::json RunStandingDemo(const EnvConfig& config, int steps, double noise,
                                const std::filesystem::path& out_dir) {
@@ -53,4 +60,4 @@ nlohmann::json RunStandingDemo(const EnvConfig& config, int steps, double noise,
   return result;
 }
 
-}  // namespace sims::sim
+}  // namespace sims::bench

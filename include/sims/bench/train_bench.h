@@ -11,7 +11,7 @@
 
 #include "sims/learning/distributed.h"
 
-namespace sims::learning {
+namespace sims::bench {
 
 /// Runs `iterations` training iterations (after one warm-up) of the config and the sgemm
 /// reference; returns sgemm_gflops, update_gflops, ratio, env_samples_per_s,
@@ -26,7 +26,7 @@ struct TrainBenchOptions {
   int num_envs = 0;              ///< Override env.num_envs (0 = the config's).
   /// Run as one rank of a data-parallel run (samples count every rank's environments); the
   /// result then also holds all-reduce traffic per iteration and measured all-reduce times.
-  std::shared_ptr<Communicator> comm;
+  std::shared_ptr<learning::Communicator> comm;
   bool references = true;  ///< Also measure raw mj_step and sgemm (the scaling runs skip them).
 };
 
@@ -53,11 +53,7 @@ struct RankBenchOptions {
 /// projection to larger rank counts from those measured inputs.
 nlohmann::json RunRankScalingBenchmark(const RankBenchOptions& options);
 
-/// A TCP port on 127.0.0.1 that was free a moment ago (the kernel picks it): a rendezvous
-/// port for ranks started on this machine.
-int FreeLoopbackPort();
-
 /// Best-of GFLOP/s of an n×n×n float matmul in libtorch.
 double MeasureSgemmGflops(int n = 1024, int repeats = 5);
 
-}  // namespace sims::learning
+}  // namespace sims::bench

@@ -1,4 +1,4 @@
-#include "sims/sim/heightmap_bench.h"
+#include "sims/bench/heightmap_bench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,14 @@
 #include "sims/sim/model_builder.h"
 #include "sims/sim/scene_physics.h"
 
-namespace sims::sim {
+namespace sims::bench {
+
+using sim::BuildModel;
+using sim::CompileSceneGeometry;
+using sim::MakeData;
+using sim::MjDataPtr;
+using sim::MjModelPtr;
+using sim::StaticGeometry;
 
 namespace {
 
@@ -155,4 +162,4 @@ nlohmann::json RunHeightmapBenchmark(const HeightmapBenchOptions& o) {
   return j;
 }
 
-}  // namespace sims::sim
+}  // namespace sims::bench

@@ -5,6 +5,10 @@
 #include <nlohmann/json.hpp>
 
 namespace sims::sim {
+class BatchedEnv;
+}  // namespace sims::sim
+
+namespace sims::bench {
 
 /// Benchmark settings.
 struct EnvBenchOptions {
@@ -15,15 +19,13 @@ struct EnvBenchOptions {
   double action_noise = 0.1;  ///< Perturbation around the standing pose.
 };
 
-class BatchedEnv;
-
 /// Raw physics reference for any scene: copies of `env`'s current mjData states, their
 /// controls held, stepped with plain mj_step `substeps` times per control step in an OpenMP
 /// loop with `threads` threads. Returns the best-of-`repeats` mj_step calls per second.
-double RawStepsPerSecondFrom(BatchedEnv& env, int threads, int control_steps, int repeats = 3);
+double RawStepsPerSecondFrom(sim::BatchedEnv& env, int threads, int control_steps, int repeats = 3);
 
 /// Runs the benchmark; returns raw_steps_per_s, env_physics_steps_per_s, ratio, threads,
 /// scaling and per-thread-count details.
 nlohmann::json RunEnvBenchmark(const EnvBenchOptions& options);
 
-}  // namespace sims::sim
+}  // namespace sims::bench
