@@ -1,7 +1,9 @@
 #include "sims/task/walk/walk.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -139,6 +141,39 @@ TEST(WalkStyleTest, StyleVectorReachesTheObservation) {
       EXPECT_EQ(z_of(1), s.setup.context.styles->z(s.setup.skill->style_id(1)));
     }
   }
+}
+
+// With speed_from_style the speed term asks for the episode's style clip's pace (its "speed"
+// parameter, clamped); without it, or without a clip, for target_speed.
+TEST(WalkStyleTest, SpeedFollowsTheStyleClip) {
+  SkillConfig c;
+  c.motion.manifest = testing::SyntheticManifest({"walk"});
+  c.motion.skills = {"walk"};
+  c.style_conditioned = true;
+  c.walk.speed_from_style = true;
+  c.walk.style_speed_min = 0.7;
+  c.walk.style_speed_max = 1.5;
+  auto s = testing::MakeSkillEnv(c, 8);
+  auto* walk = dynamic_cast<WalkSkill*>(s.setup.skill.get());
+  ASSERT_NE(walk, nullptr);
+  const auto& lib = *s.setup.context.motions;
+  std::set<double> speeds;
+  for (int round = 0; round < 4; ++round) {
+    for (int i = 0; i < 8; ++i) {
+      s.env->ResetEnv(i);
+      const int clip = walk->style_id(i);
+      ASSERT_GE(clip, 0);
+      const double pace = lib.clip(clip).meta().params.at("speed");
+      EXPECT_DOUBLE_EQ(walk->target_speed(i), std::clamp(pace, 0.7, 1.5))
+          << lib.clip(clip).meta().name;
+      speeds.insert(walk->target_speed(i));
+    }
+  }
+  EXPECT_GE(speeds.size(), 3u);  // different styles, different paces
+  c.walk.speed_from_style = false;
+  auto plain = testing::MakeSkillEnv(c, 2);
+  EXPECT_DOUBLE_EQ(dynamic_cast<WalkSkill*>(plain.setup.skill.get())->target_speed(0),
+                   c.target_speed);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 // another env's slot or any shared mutable state.
 #include "sims/task/walk/walk.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -95,6 +96,17 @@ bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarg
   return true;
 }
 
+double WalkSkill::target_speed(int env_id) const {
+  const int clip = style_id(env_id);
+  if (!config_.walk.speed_from_style || !context_.motions || clip < 0 ||
+      clip >= context_.motions->num_clips())
+    return config_.target_speed;
+  const auto& params = context_.motions->clip(clip).meta().params;
+  const auto it = params.find("speed");
+  if (it == params.end()) return config_.target_speed;
+  return std::clamp(it->second, config_.walk.style_speed_min, config_.walk.style_speed_max);
+}
+
 double WalkSkill::goal_error(const sim::EnvView& view) const {
   return (target_[view.env_id] - view.pose->root_pos.head<2>()).norm();
 }
@@ -128,7 +140,7 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
 
   sim::TaskStepResult r;
   r.reward = static_cast<float>(
-      Reward(target_[i], root, vel, prev_velocity_[i], facing, config_.target_speed));
+      Reward(target_[i], root, vel, prev_velocity_[i], facing, target_speed(i)));
   prev_velocity_[i] = vel;
   r.success = (target_[i] - root).norm() < config_.walk.success_radius;
   hold_[i] = r.success ? hold_[i] + 1 : 0;
@@ -170,6 +182,8 @@ void WalkParams::Validate() const {
   Require(target_min_distance >= 0 && target_max_distance >= target_min_distance,
           "target_max_distance", "a distance ≥ target_min_distance ≥ 0");
   Require(success_radius > 0, "walk_success_radius", "a positive radius (m)");
+  Require(style_speed_min > 0 && style_speed_max >= style_speed_min, "style_speed_max",
+          "speeds with 0 < style_speed_min ≤ style_speed_max (m/s)");
 }
 
 // The registry entry: vocabulary traits (core/skill_vocabulary.cpp), params, scene, factory.

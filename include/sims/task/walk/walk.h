@@ -34,6 +34,8 @@ class WalkSkill : public Skill {
   void SetTarget(int env_id, const Eigen::Vector2d& target_xy);
   /// Env i's current target.
   Eigen::Vector2d target(int env_id) const { return target_[env_id]; }
+  /// The speed env `env_id`'s reward asks for (m/s): target_speed, or its style clip's pace.
+  double target_speed(int env_id) const;
   /// Draws a target on free floor at a distance in [min, max] from `from`.
   Eigen::Vector2d SampleTarget(const Eigen::Vector2d& from, Rng& rng) const;
   /// The walk reward for one state (exposed for tests).
