@@ -139,8 +139,8 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   const Eigen::Vector2d facing(std::cos(heading), std::sin(heading));
 
   sim::TaskStepResult r;
-  r.reward = static_cast<float>(
-      Reward(target_[i], root, vel, prev_velocity_[i], facing, target_speed(i)));
+  r.reward =
+      static_cast<float>(Reward(target_[i], root, vel, prev_velocity_[i], facing, target_speed(i)));
   prev_velocity_[i] = vel;
   r.success = (target_[i] - root).norm() < config_.walk.success_radius;
   hold_[i] = r.success ? hold_[i] + 1 : 0;
