@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "sims/core/error.h"
 #include "sims/core/rng.h"
 #include "sims/sim/features.h"
 
@@ -98,6 +99,19 @@ Eigen::MatrixXd PoseFeatures(const io::MotionRecord& record, int stride) {
   Eigen::MatrixXd m(n, 3 * (sim::kNumBodies - 1) + sim::kDofObsDim);
   for (int i = 0; i < n; ++i)
     m.row(i) = PoseFeature(record.frames[static_cast<size_t>(i) * stride]).transpose();
+  return m;
+}
+
+Eigen::MatrixXd StackRows(const std::vector<Eigen::MatrixXd>& parts) {
+  Eigen::Index rows = 0, cols = 0;
+  for (const auto& p : parts) rows += p.rows(), cols = p.cols();
+  Eigen::MatrixXd m(rows, cols);
+  Eigen::Index r = 0;
+  for (const auto& p : parts) {
+    SIMS_CHECK(p.cols() == cols);
+    m.middleRows(r, p.rows()) = p;
+    r += p.rows();
+  }
   return m;
 }
 

@@ -118,18 +118,10 @@ StyleTrials PrepareStyleTrials(const PolicyEvalOptions& o, const task::SkillConf
     ThrowInputError(sc.motion.manifest, "clips", "clips of skill '" + sc.skill + "'", "none");
   st.classifier = std::make_unique<StyleClassifier>(StyleClassifier::Train(train));
   std::vector<Eigen::MatrixXd> parts;
-  Eigen::Index rows = 0;
   for (const auto* list : {&train, &heldout})
-    for (const motion::MotionClip* c : *list) {
+    for (const motion::MotionClip* c : *list)
       parts.push_back(PoseFeatures(io::RecordFromClip(*c, 30.0), 3));
-      rows += parts.back().rows();
-    }
-  st.reference.resize(rows, parts.empty() ? 0 : parts.front().cols());
-  rows = 0;
-  for (const auto& p : parts) {
-    st.reference.middleRows(rows, p.rows()) = p;
-    rows += p.rows();
-  }
+  st.reference = StackRows(parts);
   st.report.classifier_heldout = st.classifier->Score(heldout, /*segment_frames=*/90);
   st.report.chance = 1.0 / static_cast<double>(st.classifier->labels().size());
 
@@ -410,14 +402,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     for (const auto& [emotion, c] : count)
       st.report.per_emotion[emotion] = static_cast<double>(right[emotion]) / c;
     st.report.accuracy = correct / n;
-    Eigen::Index rows = 0;
-    for (const auto& g : st.generated) rows += g.rows();
-    Eigen::MatrixXd gen(rows, st.reference.cols());
-    rows = 0;
-    for (const auto& g : st.generated) {
-      gen.middleRows(rows, g.rows()) = g;
-      rows += g.rows();
-    }
+    const Eigen::MatrixXd gen = StackRows(st.generated);
     if (gen.rows() > 1 && st.reference.rows() > 1) {
       st.report.fid = FrechetDistance(gen, st.reference);
       st.report.apd = AveragePairwiseDistance(gen);

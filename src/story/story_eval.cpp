@@ -12,25 +12,13 @@ namespace sims::story {
 
 namespace {
 
-Eigen::MatrixXd Stack(const std::vector<Eigen::MatrixXd>& parts) {
-  int64_t rows = 0, cols = 0;
-  for (const auto& p : parts) rows += p.rows(), cols = p.cols();
-  Eigen::MatrixXd m(rows, cols);
-  int64_t r = 0;
-  for (const auto& p : parts) {
-    m.middleRows(r, p.rows()) = p;
-    r += p.rows();
-  }
-  return m;
-}
-
 Eigen::MatrixXd ReferenceFeatures(const std::filesystem::path& manifest) {
   auto humanoid = std::make_shared<const sim::Humanoid>(sim::BuildModel());
   const auto lib = motion::MotionLibrary::Load(manifest, humanoid);
   std::vector<Eigen::MatrixXd> parts;
   for (int i = 0; i < lib.num_clips(); ++i)
     parts.push_back(eval::PoseFeatures(io::RecordFromClip(lib.clip(i), 30.0), 3));
-  return Stack(parts);
+  return eval::StackRows(parts);
 }
 
 }  // namespace
@@ -114,7 +102,7 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       d["penetration_fraction"] = pen / n;
       d["penetration_max_depth"] = depth;
       d["foot_sliding_m_per_s"] = slide / n;
-      const Eigen::MatrixXd gen = Stack(features);
+      const Eigen::MatrixXd gen = eval::StackRows(features);
       d["apd"] = eval::AveragePairwiseDistance(gen);
       if (reference.rows() > 1) d["fid"] = eval::FrechetDistance(gen, reference);
       all_features.insert(all_features.end(), features.begin(), features.end());
@@ -129,7 +117,7 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       {"feature",
        "per-frame heading-frame body positions (42) + joint rotations (72), every 3rd frame"}};
   if (!all_features.empty()) {
-    const Eigen::MatrixXd gen = Stack(all_features);
+    const Eigen::MatrixXd gen = eval::StackRows(all_features);
     out["apd"] = eval::AveragePairwiseDistance(gen);
     if (reference.rows() > 1) {
       out["fid"] = eval::FrechetDistance(gen, reference);

@@ -40,6 +40,9 @@ Eigen::VectorXd PoseFeature(const io::RecordFrame& frame);
 /// Features of every `stride`-th frame of a record as rows.
 Eigen::MatrixXd PoseFeatures(const io::MotionRecord& record, int stride = 1);
 
+/// The rows of `parts` one after another (all with the same column count).
+Eigen::MatrixXd StackRows(const std::vector<Eigen::MatrixXd>& parts);
+
 /// Fréchet distance between Gaussians fitted to the rows of a and b.
 double FrechetDistance(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
 
