@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
   bool sequential = false;
   app.add_flag("--sequential", sequential,
                "run the stories one after another instead of batched (same results)");
-  app.add_option("--batch-size", o.batch_size, "at most this many stories at once (0 = all)")
+  app.add_option("--batch-size", o.batch_size,
+                 "at most this many stories at once (default 32; 0 = all)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--no-text", o.story.ablation.no_text, "ablation: zero the style z policies see");
   app.add_flag("--no-heightmap", o.story.ablation.no_heightmap,
