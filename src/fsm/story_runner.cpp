@@ -133,7 +133,7 @@ struct StoryRunner::Impl {
   io::MotionRecordBuilder* recorder = nullptr;
   StoryRunner::ActionOverride override_fn;
 
-  enum class Outcome { kSuccess, kTimeout, kFall, kCannotStart };
+  enum class Outcome { kSuccess, kTimeout, kFall };
 
   // One attempt of an instruction in progress (what used to be the locals of a loop that ran
   // the attempt to its end), so a driver can advance many characters one control step at a time.
@@ -621,8 +621,7 @@ std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>& jobs, in
   std::vector<StoryRunner::Impl*> m(n);
   for (int i = 0; i < n; ++i) {
     SIMS_CHECK_MSG(jobs[i].runner && jobs[i].instructions,
-                   "a story job needs a runner and "
-                   "instructions");
+                   "a story job needs a runner and instructions");
     m[i] = jobs[i].runner->impl_.get();
     for (int j = 0; j < i; ++j) SIMS_CHECK_MSG(m[j] != m[i], "each story job needs its own runner");
   }
@@ -711,6 +710,7 @@ std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>& jobs, in
   }
   return results;
 }
+
 nlohmann::json StoryResultToJson(const StoryResult& r) {
   nlohmann::json ks = nlohmann::json::array();
   for (const auto& k : r.keyframes)
