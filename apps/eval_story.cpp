@@ -1,6 +1,7 @@
 // eval_story: SIMS Table 2 protocol over generated stories (success rate, contact error,
 // success steps, penetration, foot sliding, FID, APD); prints JSON and writes --out. Stories run
-// through run_story's pipeline (story/story.h), captions → style z included.
+// through run_story's pipeline (story/story.h), captions → style z included; they run batched
+// (one policy call per policy per control step over all stories) unless --sequential.
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -32,6 +33,12 @@ int main(int argc, char** argv) {
   app.add_option("--outputs", outputs,
                  "also write each story's run_story outputs to DIR/<difficulty>_<i>");
   app.add_option("--out", out, "write the JSON report here too");
+  bool sequential = false;
+  app.add_flag("--sequential", sequential,
+               "run the stories one after another instead of batched (same results)");
+  app.add_option("--batch-size", o.batch_size,
+                 "at most this many stories at once (default 32; 0 = all)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--no-text", o.story.ablation.no_text, "ablation: zero the style z policies see");
   app.add_flag("--no-heightmap", o.story.ablation.no_heightmap,
                "ablation: zero the heightmap policies see");
@@ -40,6 +47,7 @@ int main(int argc, char** argv) {
   return sims::RunApp(flags, [&] {
     o.policies = policies;
     o.themes = themes;
+    o.batched = !sequential;
     o.outputs_dir = outputs;
     o.environment = sims::InstalledEnvironment();  // $SIMS_LLM_* for planning the themes
     if (!reference.empty() && std::filesystem::exists(reference)) o.reference_manifest = reference;

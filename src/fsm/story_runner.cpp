@@ -2,13 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
 
+#include <omp.h>
+
 #include "sims/core/error.h"
 #include "sims/core/log.h"
+#include "sims/core/parallel.h"
 #include "sims/core/progress.h"
 #include "sims/core/rng.h"
 #include "sims/core/skill_vocabulary.h"
@@ -94,6 +98,22 @@ LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& f
   return p;
 }
 
+// Keeps the OpenMP regions this thread opens to one thread while alive. The policies' networks
+// open a region per layer to keep the BLAS single-threaded (learning/networks.cpp), but a
+// story's rows fit one chunk, so there is nothing to share out, and on a busy machine each
+// fork/join costs more than the layer: with 2 threads next to two training jobs, a character's
+// control step took 5.3 ms instead of 0.4 ms. The actions do not depend on the thread count.
+class SingleThreadedRegions {
+ public:
+  SingleThreadedRegions() : saved_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~SingleThreadedRegions() { omp_set_num_threads(saved_); }
+  SingleThreadedRegions(const SingleThreadedRegions&) = delete;
+  SingleThreadedRegions& operator=(const SingleThreadedRegions&) = delete;
+
+ private:
+  int saved_;
+};
+
 }  // namespace
 
 struct StoryRunner::Impl {
@@ -113,6 +133,42 @@ struct StoryRunner::Impl {
   io::MotionRecordBuilder* recorder = nullptr;
   StoryRunner::ActionOverride override_fn;
 
+  enum class Outcome { kSuccess, kTimeout, kFall };
+
+  // One attempt of an instruction in progress (what used to be the locals of a loop that ran
+  // the attempt to its end), so a driver can advance many characters one control step at a time.
+  struct AttemptState {
+    const Instruction* in = nullptr;
+    task::Skill* skill = nullptr;
+    double timeout = 0;
+    task::InstructionTarget target;
+    std::optional<PathFollower> follower;
+    bool last_stretch = true;  // success counts only once the carrot is the goal itself
+    int hold_needed = 1;
+    double start = 0;
+    int held = 0;
+  };
+
+  // Where the character is in the story: the instruction, which attempt, and whether it runs the
+  // instruction's skill or the get-up after a fall.
+  enum class Phase { kAttempt, kRecover, kDone };
+  struct RunState {
+    const std::vector<Instruction>* instructions = nullptr;
+    size_t k = 0;     // current instruction
+    int attempt = 0;  // attempt of the current instruction
+    Phase phase = Phase::kDone;
+    AttemptState current;
+    Instruction recovery;  // the get-up instruction while recovering
+    KeyframeOutcome out;   // outcome of the current instruction, being built
+    StoryResult result;
+    bool failed_before = false;
+    double error_sum = 0;
+    int error_count = 0;
+    std::unique_ptr<ProgressReporter> progress;
+    std::string log_prefix;  // names the story in a batch's interleaved log
+  };
+  RunState run;
+
   double Now() const { return step * env->control_dt(); }
 
   bool Fallen() const {
@@ -123,13 +179,25 @@ struct StoryRunner::Impl {
 
   sim::EnvView View() const { return env->View(0); }
 
-  void StepOnce(const std::string& skill) {
+  // The skill whose policy chooses the next action (valid while not done).
+  const std::string& PendingSkill() const { return run.current.in->skill; }
+
+  // The observation for the pending skill's policy, with the withheld inputs zeroed (in place,
+  // as the policy sees it).
+  const float* PolicyObservation() {
+    options.ablation.Apply(env->task()->obs_segments(), 1, env->obs_dim(), env->observations());
+    return env->observations();
+  }
+
+  // The action of this character alone (the override, else its own policy).
+  void ActAlone() {
     if (override_fn)
-      override_fn(skill, env->observations(), action.data());
-    else {
-      options.ablation.Apply(env->task()->obs_segments(), 1, env->obs_dim(), env->observations());
-      policies.at(skill).policy->Act(env->observations(), 1, action.data());
-    }
+      override_fn(PendingSkill(), env->observations(), action.data());
+    else
+      policies.at(PendingSkill()).policy->Act(PolicyObservation(), 1, action.data());
+  }
+
+  void ApplyAction() {
     env->Step(action.data());
     ++step;
     if (recorder) recorder->AddFrame(env->pose(0));
@@ -143,88 +211,92 @@ struct StoryRunner::Impl {
     return skills.at(skill)->goal_error(View());
   }
 
-  enum class Outcome { kSuccess, kTimeout, kFall, kCannotStart };
+  // Walks chase a carrot on the path: the walk policy was trained on targets metres away and
+  // circles around ones it is about to pass, so it never gets a corner point as its target.
+  bool Aim(AttemptState* a) {
+    task::InstructionTarget t = a->target;
+    if (a->follower) {
+      const Eigen::Vector2d c =
+          a->follower->Carrot(env->pose(0).root_pos.head<2>(), options.lookahead);
+      t.point = {c.x(), c.y(), 0};
+      a->last_stretch = a->follower->IsEnd(c);
+    }
+    const bool ok = a->skill->BeginInstruction(View(), t);
+    // The observation of the last step was assembled for the previous goal (or skill).
+    env->RefreshTaskObservation(0);
+    return ok;
+  }
 
-  // Runs one attempt of an instruction; walks follow A* waypoints.
-  Outcome Attempt(const Instruction& in, double* error, std::string* note) {
-    task::Skill* skill = skills.at(in.skill).get();
+  // Starts an attempt of an instruction (walks follow A* waypoints); false when the skill
+  // cannot pursue the target (`note` says so). No control step is taken.
+  bool BeginAttempt(const Instruction& in, AttemptState* a, std::string* note) {
+    *a = AttemptState();
+    a->in = &in;
+    a->skill = skills.at(in.skill).get();
     const SkillTraits& traits = SkillTraitsOf(in.skill);
     const bool walk_timing = traits.timing == StoryTiming::kWalk;
-    task->set_current(skill);
-    skill->SetStyleVector(0, in.z);
-    double timeout = walk_timing ? options.walk_timeout_s : options.skill_timeout_s;
+    task->set_current(a->skill);
+    a->skill->SetStyleVector(0, in.z);
+    a->timeout = walk_timing ? options.walk_timeout_s : options.skill_timeout_s;
     std::vector<Eigen::Vector2d> waypoints;
-    task::InstructionTarget target = in.target;
-    if (traits.navigates && target.has_point) {
-      waypoints = free_space->Waypoints(env->pose(0).root_pos.head<2>(), target.point.head<2>());
-      if (waypoints.empty()) waypoints = {target.point.head<2>()};  // no path: head straight
+    a->target = in.target;
+    if (traits.navigates && a->target.has_point) {
+      waypoints = free_space->Waypoints(env->pose(0).root_pos.head<2>(), a->target.point.head<2>());
+      if (waypoints.empty()) waypoints = {a->target.point.head<2>()};  // no path: head straight
       // A detour around walls takes longer than a walk across the room.
-      timeout += options.walk_seconds_per_m *
-                 std::max(0.0, PathLength(env->pose(0).root_pos.head<2>(), waypoints) - 5.0);
+      a->timeout += options.walk_seconds_per_m *
+                    std::max(0.0, PathLength(env->pose(0).root_pos.head<2>(), waypoints) - 5.0);
       std::string wp_text;
       for (const auto& w : waypoints) wp_text += fmt::format(" ({:.2f}, {:.2f})", w.x(), w.y());
-      spdlog::debug("walk from ({:.2f}, {:.2f}) via{}", env->pose(0).root_pos.x(),
+      spdlog::debug("{}walk from ({:.2f}, {:.2f}) via{}", run.log_prefix, env->pose(0).root_pos.x(),
                     env->pose(0).root_pos.y(), wp_text);
     }
-    std::optional<PathFollower> follower;
-    if (!waypoints.empty()) follower.emplace(env->pose(0).root_pos.head<2>(), waypoints);
-    // Walks chase a carrot on the path: the walk policy was trained on targets metres away and
-    // circles around ones it is about to pass, so it never gets a corner point as its target.
-    bool last_stretch = true;  // success counts only once the carrot is the goal itself
-    auto aim = [&]() {
-      task::InstructionTarget t = target;
-      if (follower) {
-        const Eigen::Vector2d c =
-            follower->Carrot(env->pose(0).root_pos.head<2>(), options.lookahead);
-        t.point = {c.x(), c.y(), 0};
-        last_stretch = follower->IsEnd(c);
-      }
-      const bool ok = skill->BeginInstruction(View(), t);
-      // The observation of the last step was assembled for the previous goal (or skill).
-      env->RefreshTaskObservation(0);
-      return ok;
-    };
-    if (!aim()) {
+    if (!waypoints.empty()) a->follower.emplace(env->pose(0).root_pos.head<2>(), waypoints);
+    if (!Aim(a)) {
       *note = "the " + in.skill + " skill cannot pursue this target";
-      return Outcome::kCannotStart;
+      return false;
     }
-    const int hold_needed =
-        walk_timing ? options.walk_success_hold_steps : options.success_hold_steps;
-    const double start = Now();
-    int held = 0;
-    while (Now() - start < timeout) {
-      StepOnce(in.skill);
-      if (Fallen()) {
-        *error = GoalError(in.skill, target);
-        return Outcome::kFall;
-      }
-      if (follower) aim();
-      held = last_stretch && env->successes()[0] ? held + 1 : 0;
-      if (held >= hold_needed) {
-        *error = GoalError(in.skill, target);
-        return Outcome::kSuccess;
-      }
+    a->hold_needed = walk_timing ? options.walk_success_hold_steps : options.success_hold_steps;
+    a->start = Now();
+    a->held = 0;
+    return true;
+  }
+
+  // After a control step of an attempt: its outcome if it ended (fall, success held long
+  // enough, time-out), with the goal error and a note.
+  std::optional<Outcome> CheckAttempt(AttemptState* a, double* error, std::string* note) {
+    const std::string& skill = a->in->skill;
+    if (Fallen()) {
+      *error = GoalError(skill, a->target);
+      return Outcome::kFall;
     }
-    *error = GoalError(in.skill, target);
-    spdlog::debug("time-out at ({:.2f}, {:.2f})", env->pose(0).root_pos.x(),
+    if (a->follower) Aim(a);
+    a->held = a->last_stretch && env->successes()[0] ? a->held + 1 : 0;
+    if (a->held >= a->hold_needed) {
+      *error = GoalError(skill, a->target);
+      return Outcome::kSuccess;
+    }
+    if (Now() - a->start < a->timeout) return std::nullopt;
+    *error = GoalError(skill, a->target);
+    spdlog::debug("{}time-out at ({:.2f}, {:.2f})", run.log_prefix, env->pose(0).root_pos.x(),
                   env->pose(0).root_pos.y());
-    *note = "time-out after " + std::to_string(static_cast<int>(timeout)) + " s";
+    *note = "time-out after " + std::to_string(static_cast<int>(a->timeout)) + " s";
     return Outcome::kTimeout;
   }
 
-  // After a fall: get up where the character lies (if a get-up policy exists).
-  bool Recover() {
+  // After a fall: get up where the character lies (if a get-up policy exists). False when
+  // there is none or it cannot start; true when the get-up attempt runs.
+  bool BeginRecovery() {
     const auto it = std::find_if(skills.begin(), skills.end(), [](const auto& s) {
       return SkillTraitsOf(s.first).recovers_falls;
     });
     if (it == skills.end()) return false;
-    Instruction up;
-    up.skill = it->first;
-    up.target.point = env->pose(0).root_pos;
-    up.target.has_point = true;
-    double err = 0;
+    run.recovery = Instruction();
+    run.recovery.skill = it->first;
+    run.recovery.target.point = env->pose(0).root_pos;
+    run.recovery.target.has_point = true;
     std::string note;
-    return Attempt(up, &err, &note) == Outcome::kSuccess;
+    return BeginAttempt(run.recovery, &run.current, &note);
   }
 
   // Without a working get-up the story cannot go on from the floor: the character is put
@@ -242,6 +314,175 @@ struct StoryRunner::Impl {
     env->Reset();
     ++step;  // the reset takes one control step, so motion frames stay on the clock
     if (recorder) recorder->AddFrame(env->pose(0));
+  }
+
+  // The resumable story: Begin, then (while not done) an action for PendingSkill() and
+  // Advance(), then Finish. Between control steps the character is always in an attempt
+  // (kAttempt or kRecover) or done; everything that takes no control step (instructions that
+  // cannot run, outcomes, starting the next attempt) happens inside Begin and Advance.
+  void Begin(const std::vector<Instruction>& instructions, const Eigen::Vector3d& start,
+             double start_heading, io::MotionRecordBuilder* rec, bool report_progress) {
+    recorder = rec;
+    step = 0;
+    sim::HumanoidPose pose;
+    pose.root_pos = {start.x(), start.y(), sim::kDefaultRootHeight};
+    pose.root_rot = Eigen::AngleAxisd(start_heading, Eigen::Vector3d::UnitZ());
+    task->set_start(pose);
+    task->set_current(nullptr);
+    env->Reset();
+    if (recorder) recorder->AddFrame(env->pose(0));
+    const std::string prefix = run.log_prefix;
+    run = RunState();
+    run.log_prefix = prefix;
+    run.instructions = &instructions;
+    if (report_progress)
+      run.progress = std::make_unique<ProgressReporter>(
+          "story", static_cast<int64_t>(instructions.size()), "keyframes", 5.0);
+    StartInstruction();
+  }
+
+  bool Done() const { return run.phase == Phase::kDone; }
+
+  // Steps the environment with `action` (already in `action`) and moves the FSM on.
+  void Advance() {
+    ApplyAction();
+    double err = 0;
+    std::string why;
+    const auto o = CheckAttempt(&run.current, &err, &why);
+    if (!o) return;
+    if (run.phase == Phase::kRecover)
+      AfterRecovery(*o == Outcome::kSuccess);
+    else
+      AfterAttempt(*o, err, why);
+  }
+
+  // Opens instructions in turn until one needs control steps or the story ends.
+  void StartInstruction() {
+    const auto& instructions = *run.instructions;
+    while (run.k < instructions.size()) {
+      const Instruction& in = instructions[run.k];
+      KeyframeOutcome& out = run.out;
+      out = KeyframeOutcome();
+      out.keyframe = in.keyframe;
+      out.skill = in.skill;
+      out.caption = in.caption;
+      out.emotion = in.emotion;
+      out.object = in.object_name;
+      out.start_time = Now();
+      io::KeyframeAnnotation note;
+      note.index = in.keyframe >= 0 ? in.keyframe : static_cast<int>(run.k);
+      note.skill = in.skill;
+      note.caption = in.caption;
+      note.emotion = in.emotion;
+      note.furniture = in.object_name;
+      if (!in.placed || !skills.count(in.skill)) {
+        out.note = !in.placed
+                       ? "not placed: " + in.note
+                       : "no usable policy for '" + in.skill + "'" +
+                             (skill_errors.count(in.skill) ? ": " + skill_errors.at(in.skill) : "");
+        if (recorder) recorder->AddKeyframe(note);
+        EndInstruction();
+        continue;
+      }
+      if (recorder) recorder->BeginKeyframe(note);
+      run.attempt = 0;
+      if (StartAttempt()) return;
+    }
+    Finish();
+  }
+
+  // Starts attempt run.attempt of the current instruction; false when it ended at once (the
+  // instruction is then closed).
+  bool StartAttempt() {
+    std::string why;
+    if (BeginAttempt((*run.instructions)[run.k], &run.current, &why)) {
+      run.phase = Phase::kAttempt;
+      return true;
+    }
+    run.out.contact_error = 0;
+    run.out.note = why;
+    CloseKeyframe();
+    return false;
+  }
+
+  void AfterAttempt(Outcome o, double err, const std::string& why) {
+    KeyframeOutcome& out = run.out;
+    out.contact_error = err;
+    if (o == Outcome::kSuccess) {
+      out.success = true;
+    } else if (o == Outcome::kFall) {
+      ++out.falls;
+      if (BeginRecovery()) {
+        run.phase = Phase::kRecover;
+        return;
+      }
+      AfterRecovery(false);
+      return;
+    } else {
+      out.note = why;
+    }
+    CloseKeyframe();
+    StartInstruction();
+  }
+
+  void AfterRecovery(bool up) {
+    KeyframeOutcome& out = run.out;
+    if (up && run.attempt < options.max_retries) {
+      ++out.retries;
+      ++run.attempt;
+      if (StartAttempt()) return;
+      StartInstruction();
+      return;
+    }
+    out.note = up ? "fell; retries exhausted" : "fell and could not get up";
+    if (!up && options.reset_after_fall) {
+      ResetStanding();
+      out.note += "; reset standing";
+    }
+    CloseKeyframe();
+    StartInstruction();
+  }
+
+  // Ends the current (attempted) instruction's keyframe annotation and records its outcome.
+  void CloseKeyframe() {
+    if (recorder) recorder->EndKeyframe(run.out.success, run.out.note);
+    EndInstruction();
+  }
+
+  // Records the current instruction's outcome and moves to the next one.
+  void EndInstruction() {
+    const Instruction& in = (*run.instructions)[run.k];
+    KeyframeOutcome& out = run.out;
+    StoryResult& result = run.result;
+    out.end_time = Now();
+    const bool attempted = in.placed && skills.count(in.skill);
+    if (attempted && (in.target.object >= 0 || SkillTraitsOf(in.skill).navigates)) {
+      run.error_sum += out.contact_error;
+      ++run.error_count;
+    }
+    if (!out.success) run.failed_before = true;
+    if (!run.failed_before) ++result.success_steps;
+    result.falls += out.falls;
+    spdlog::info("{}keyframe {} {} '{}' {}: {} ({:.1f}-{:.1f} s, error {:.2f} m){}", run.log_prefix,
+                 run.k, in.skill, in.caption, in.object_name, out.success ? "success" : "failed",
+                 out.start_time, out.end_time, out.contact_error,
+                 out.note.empty() ? "" : " — " + out.note);
+    result.keyframes.push_back(out);
+    ++run.k;
+    if (run.progress) run.progress->Update(static_cast<int64_t>(run.k));
+  }
+
+  // The story's totals, once every instruction is closed.
+  void Finish() {
+    StoryResult& result = run.result;
+    int ok = 0;
+    for (const auto& o : result.keyframes) ok += o.success;
+    result.success_rate =
+        result.keyframes.empty() ? 0.0 : static_cast<double>(ok) / result.keyframes.size();
+    result.mean_contact_error = run.error_count ? run.error_sum / run.error_count : 0.0;
+    result.duration_s = Now();
+    run.phase = Phase::kDone;
+    recorder = nullptr;
   }
 };
 
@@ -370,98 +611,104 @@ Eigen::Vector3d StoryRunner::DefaultStart(const std::vector<Instruction>& instru
 StoryResult StoryRunner::Run(const std::vector<Instruction>& instructions,
                              const Eigen::Vector3d& start, double start_heading,
                              io::MotionRecordBuilder* recorder) {
-  auto& m = *impl_;
-  CheckPolicies(instructions);
-  m.recorder = recorder;
-  m.step = 0;
-  sim::HumanoidPose pose;
-  pose.root_pos = {start.x(), start.y(), sim::kDefaultRootHeight};
-  pose.root_rot = Eigen::AngleAxisd(start_heading, Eigen::Vector3d::UnitZ());
-  m.task->set_start(pose);
-  m.task->set_current(nullptr);
-  m.env->Reset();
-  if (recorder) recorder->AddFrame(m.env->pose(0));
+  return RunStoriesBatched({StoryJob{this, &instructions, start, start_heading, recorder}}, 1)
+      .front();
+}
 
-  StoryResult result;
-  ProgressReporter progress("story", static_cast<int64_t>(instructions.size()), "keyframes", 5.0);
-  bool failed_before = false;
-  double error_sum = 0;
-  int error_count = 0;
-  for (size_t k = 0; k < instructions.size(); ++k) {
-    const Instruction& in = instructions[k];
-    KeyframeOutcome out;
-    out.keyframe = in.keyframe;
-    out.skill = in.skill;
-    out.caption = in.caption;
-    out.emotion = in.emotion;
-    out.object = in.object_name;
-    out.start_time = m.Now();
-    io::KeyframeAnnotation note;
-    note.index = in.keyframe >= 0 ? in.keyframe : static_cast<int>(k);
-    note.skill = in.skill;
-    note.caption = in.caption;
-    note.emotion = in.emotion;
-    note.furniture = in.object_name;
-    if (!in.placed || !m.skills.count(in.skill)) {
-      out.note =
-          !in.placed
-              ? "not placed: " + in.note
-              : "no usable policy for '" + in.skill + "'" +
-                    (m.skill_errors.count(in.skill) ? ": " + m.skill_errors.at(in.skill) : "");
-      if (recorder) recorder->AddKeyframe(note);
-    } else {
-      if (recorder) recorder->BeginKeyframe(note);
-      for (int attempt = 0;; ++attempt) {
-        double err = 0;
-        std::string why;
-        const auto o = m.Attempt(in, &err, &why);
-        out.contact_error = err;
-        if (o == Impl::Outcome::kSuccess) {
-          out.success = true;
-          break;
-        }
-        if (o == Impl::Outcome::kFall) {
-          ++out.falls;
-          const bool up = m.Recover();
-          if (up && attempt < m.options.max_retries) {
-            ++out.retries;
-            continue;
-          }
-          out.note = up ? "fell; retries exhausted" : "fell and could not get up";
-          if (!up && m.options.reset_after_fall) {
-            m.ResetStanding();
-            out.note += "; reset standing";
-          }
-          break;
-        }
-        out.note = why;
-        break;
-      }
-      if (recorder) recorder->EndKeyframe(out.success, out.note);
-    }
-    out.end_time = m.Now();
-    const bool attempted = in.placed && m.skills.count(in.skill);
-    if (attempted && (in.target.object >= 0 || SkillTraitsOf(in.skill).navigates)) {
-      error_sum += out.contact_error;
-      ++error_count;
-    }
-    if (!out.success) failed_before = true;
-    if (!failed_before) ++result.success_steps;
-    result.falls += out.falls;
-    spdlog::info("keyframe {} {} '{}' {}: {} ({:.1f}-{:.1f} s, error {:.2f} m){}", k, in.skill,
-                 in.caption, in.object_name, out.success ? "success" : "failed", out.start_time,
-                 out.end_time, out.contact_error, out.note.empty() ? "" : " — " + out.note);
-    result.keyframes.push_back(out);
-    progress.Update(static_cast<int64_t>(k + 1));
+std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>& jobs, int threads,
+                                           std::vector<std::exception_ptr>* errors) {
+  const int n = static_cast<int>(jobs.size());
+  std::vector<StoryRunner::Impl*> m(n);
+  for (int i = 0; i < n; ++i) {
+    SIMS_CHECK_MSG(jobs[i].runner && jobs[i].instructions,
+                   "a story job needs a runner and instructions");
+    m[i] = jobs[i].runner->impl_.get();
+    for (int j = 0; j < i; ++j) SIMS_CHECK_MSG(m[j] != m[i], "each story job needs its own runner");
   }
-  int ok = 0;
-  for (const auto& o : result.keyframes) ok += o.success;
-  result.success_rate =
-      result.keyframes.empty() ? 0.0 : static_cast<double>(ok) / result.keyframes.size();
-  result.mean_contact_error = error_count ? error_sum / error_count : 0.0;
-  result.duration_s = m.Now();
-  m.recorder = nullptr;
-  return result;
+  std::vector<std::exception_ptr> failed(n);
+  for (int i = 0; i < n; ++i) {
+    try {
+      jobs[i].runner->CheckPolicies(*jobs[i].instructions);
+      m[i]->run.log_prefix = n > 1 ? fmt::format("story {}: ", i) : "";
+      m[i]->Begin(*jobs[i].instructions, jobs[i].start, jobs[i].start_heading, jobs[i].recorder,
+                  /*report_progress=*/n == 1);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+  }
+  const int num_threads = threads > 0 ? threads : ThreadCount();
+  std::unique_ptr<ProgressReporter> progress;
+  if (n > 1) progress = std::make_unique<ProgressReporter>("stories", n, "stories", 5.0);
+  std::vector<int> live;
+  std::vector<float> obs_rows, act_rows;
+  for (;;) {
+    live.clear();
+    for (int i = 0; i < n; ++i)
+      if (!failed[i] && !m[i]->Done()) live.push_back(i);
+    if (progress) progress->Update(n - static_cast<int64_t>(live.size()));
+    if (live.empty()) break;
+    // Actions: one policy call per policy file over every character whose current skill uses
+    // it (rows in job order), on this thread: libtorch never runs inside the OpenMP loop below.
+    {
+      const SingleThreadedRegions single_threaded;
+      std::map<std::string, std::vector<int>> groups;
+      for (int i : live) {
+        if (m[i]->override_fn)
+          m[i]->ActAlone();
+        else
+          groups[m[i]->policy_set.policies.at(m[i]->PendingSkill()).string()].push_back(i);
+      }
+      for (const auto& [file, rows] : groups) {
+        const int k = static_cast<int>(rows.size());
+        if (k == 1) {
+          m[rows[0]]->ActAlone();
+          continue;
+        }
+        // The runners loaded the same file, so the first one's copy serves them all.
+        const learning::Policy& policy =
+            *m[rows[0]]->policies.at(m[rows[0]]->PendingSkill()).policy;
+        const int obs_dim = policy.obs_dim(), act_dim = policy.action_dim();
+        SIMS_CHECK(act_dim == sim::kNumDofs);
+        obs_rows.resize(static_cast<size_t>(k) * obs_dim);
+        act_rows.resize(static_cast<size_t>(k) * act_dim);
+        for (int r = 0; r < k; ++r) {
+          SIMS_CHECK(m[rows[r]]->env->obs_dim() == obs_dim);
+          std::memcpy(obs_rows.data() + static_cast<size_t>(r) * obs_dim,
+                      m[rows[r]]->PolicyObservation(), sizeof(float) * obs_dim);
+        }
+        // Exactly what each row gets alone (a BLAS rounds a block of rows unlike a lone row).
+        policy.ActRowExact(obs_rows.data(), k, act_rows.data());
+        for (int r = 0; r < k; ++r)
+          std::copy_n(act_rows.data() + static_cast<size_t>(r) * act_dim, act_dim,
+                      m[rows[r]]->action.data());
+      }
+    }
+    // Physics and FSM: each runner touches only its own model, data, skills and recorder, so
+    // they step in parallel with the same results at any thread count.
+    const int num_live = static_cast<int>(live.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(num_threads) if (num_live > 1)
+    for (int j = 0; j < num_live; ++j) {
+      const int i = live[j];
+      try {
+        m[i]->Advance();
+      } catch (...) {
+        failed[i] = std::current_exception();
+      }
+    }
+  }
+  std::vector<StoryResult> results(n);
+  for (int i = 0; i < n; ++i) {
+    m[i]->recorder = nullptr;
+    m[i]->run.progress.reset();
+    if (!failed[i]) results[i] = std::move(m[i]->run.result);
+  }
+  if (errors) {
+    *errors = std::move(failed);
+  } else {
+    for (const auto& e : failed)
+      if (e) std::rethrow_exception(e);
+  }
+  return results;
 }
 
 nlohmann::json StoryResultToJson(const StoryResult& r) {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
+#include <random>
 #include <sstream>
 #include <tuple>
 
@@ -1125,6 +1126,8 @@ struct Policy::Impl {
   RunningMeanStd obs_norm{nullptr};
   int obs_dim = 0, action_dim = 0;
   std::string metadata;
+  std::once_flag row_exact_once;
+  int row_exact_rows = 1;
 };
 
 Policy::Policy(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
@@ -1154,6 +1157,36 @@ void Policy::Act(const float* obs, int n, float* actions) const {
   const auto o = FromBuffer(obs, {n, impl_->obs_dim});
   const auto mu = impl_->ac->Mean(impl_->obs_norm->Normalize(o), o).contiguous();
   std::memcpy(actions, mu.data_ptr<float>(), sizeof(float) * n * impl_->action_dim);
+}
+
+int Policy::RowExactRows() const {
+  std::call_once(impl_->row_exact_once, [this] {
+    constexpr int kMaxRows = 64;
+    const int d = impl_->obs_dim, a = impl_->action_dim;
+    std::mt19937 gen(12345);
+    std::normal_distribution<float> normal;
+    std::vector<float> obs(static_cast<size_t>(kMaxRows) * d);
+    for (auto& v : obs) v = normal(gen);
+    std::vector<float> alone(static_cast<size_t>(kMaxRows) * a), together(alone.size());
+    for (int i = 0; i < kMaxRows; ++i)
+      Act(obs.data() + static_cast<size_t>(i) * d, 1, alone.data() + static_cast<size_t>(i) * a);
+    // Chunks of c rows end in a shorter one, so every batch size up to c has to agree.
+    int rows = 1;
+    for (int c = 2; c <= kMaxRows; ++c) {
+      Act(obs.data(), c, together.data());
+      if (std::memcmp(together.data(), alone.data(), sizeof(float) * c * a) != 0) break;
+      rows = c;
+    }
+    impl_->row_exact_rows = rows;
+  });
+  return impl_->row_exact_rows;
+}
+
+void Policy::ActRowExact(const float* obs, int n, float* actions) const {
+  const int chunk = RowExactRows();
+  for (int r = 0; r < n; r += chunk)
+    Act(obs + static_cast<size_t>(r) * impl_->obs_dim, std::min(chunk, n - r),
+        actions + static_cast<size_t>(r) * impl_->action_dim);
 }
 
 }  // namespace sims::learning

@@ -133,22 +133,67 @@ PreparedStory PrepareStory(const StoryInput& input) {
 
 StoryRun RunStory(const PreparedStory& story, const fsm::PolicySet& policies,
                   const fsm::StoryOptions& options) {
-  fsm::StoryRunner runner(story.scene, policies, options);
-  runner.CheckPolicies(story.instructions);
-  const Eigen::Vector3d start = runner.DefaultStart(story.instructions);
-  io::MotionRecordBuilder recorder(runner.humanoid());
-  recorder.SetTitle(story.title);
-  recorder.SetScene(
-      {story.scene->name, story.plan.layout.mode == "given" ? story.input.scene : ""});
-  StoryRun run;
-  run.result = runner.Run(story.instructions, start, 0.0, &recorder);
-  run.record = recorder.Finish();
-  run.story = story;
-  run.policies = policies.source;
-  run.options = options;
-  run.geometry = std::make_shared<const sim::StaticGeometry>(runner.geometry());
-  run.humanoid = runner.humanoid();
-  return run;
+  return std::move(RunStories({story}, policies, {options}, nullptr, 1).front());
+}
+
+std::vector<StoryRun> RunStories(const std::vector<PreparedStory>& stories,
+                                 const fsm::PolicySet& policies,
+                                 const std::vector<fsm::StoryOptions>& options,
+                                 std::vector<std::exception_ptr>* errors, int threads) {
+  SIMS_CHECK_MSG(stories.size() == options.size(), "one set of FSM options per story");
+  const size_t n = stories.size();
+  std::vector<std::exception_ptr> failed(n);
+  std::vector<std::unique_ptr<fsm::StoryRunner>> runners(n);
+  std::vector<std::unique_ptr<io::MotionRecordBuilder>> recorders(n);
+  std::vector<fsm::StoryJob> jobs;
+  std::vector<size_t> job_story;  // story of each job
+  // Set-up one story after another: it loads policies (libtorch) and compiles scenes.
+  for (size_t i = 0; i < n; ++i) {
+    const PreparedStory& story = stories[i];
+    try {
+      runners[i] = std::make_unique<fsm::StoryRunner>(story.scene, policies, options[i]);
+      runners[i]->CheckPolicies(story.instructions);
+      fsm::StoryJob job;
+      job.runner = runners[i].get();
+      job.instructions = &story.instructions;
+      job.start = runners[i]->DefaultStart(story.instructions);
+      recorders[i] = std::make_unique<io::MotionRecordBuilder>(runners[i]->humanoid());
+      recorders[i]->SetTitle(story.title);
+      recorders[i]->SetScene(
+          {story.scene->name, story.plan.layout.mode == "given" ? story.input.scene : ""});
+      job.recorder = recorders[i].get();
+      jobs.push_back(job);
+      job_story.push_back(i);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+  }
+  std::vector<std::exception_ptr> job_errors;
+  std::vector<fsm::StoryResult> results = fsm::RunStoriesBatched(jobs, threads, &job_errors);
+  std::vector<StoryRun> runs(n);
+  for (size_t i = 0; i < n; ++i) runs[i].story = stories[i];
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    const size_t i = job_story[j];
+    if (job_errors[j]) {
+      failed[i] = job_errors[j];
+      continue;
+    }
+    StoryRun& run = runs[i];
+    run.result = std::move(results[j]);
+    run.record = recorders[i]->Finish();
+    run.policies = policies.source;
+    run.options = options[i];
+    run.geometry = std::make_shared<const sim::StaticGeometry>(runners[i]->geometry());
+    run.humanoid = runners[i]->humanoid();
+    runners[i].reset();  // frees the scene's model and environment before the next ones
+  }
+  if (errors) {
+    *errors = std::move(failed);
+  } else {
+    for (const auto& e : failed)
+      if (e) std::rethrow_exception(e);
+  }
+  return runs;
 }
 
 namespace {

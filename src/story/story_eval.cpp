@@ -1,7 +1,11 @@
 #include "sims/story/story_eval.h"
 
+#include <chrono>
+#include <exception>
+
 #include "sims/core/error.h"
 #include "sims/core/log.h"
+#include "sims/core/parallel.h"
 #include "sims/core/paths.h"
 #include "sims/core/progress.h"
 #include "sims/eval/motion_metrics.h"
@@ -48,48 +52,97 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
   const Eigen::MatrixXd reference =
       o.reference_manifest.empty() ? Eigen::MatrixXd() : ReferenceFeatures(o.reference_manifest);
 
+  // Plan every story first, then run them (together, in batches), then measure each in the
+  // order of the rows: the same stories, results and report as running them one by one.
+  struct Entry {
+    nlohmann::json row;
+    int prepared = -1;  // index into `stories`, −1 when planning failed
+  };
+  std::vector<Entry> entries;
+  std::vector<PreparedStory> stories;
+  std::vector<fsm::StoryOptions> story_options;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const auto& difficulty : o.difficulties)
+    for (int i = 0; i < o.stories_per_difficulty; ++i) {
+      const StoryInput input = EvalStoryInput(o, themes_json["themes"], difficulty, i);
+      Entry e{{{"difficulty", difficulty}, {"theme", input.theme}, {"seed", input.seed}}};
+      try {
+        stories.push_back(PrepareStory(input));
+        story.seed = input.seed;
+        story_options.push_back(story);
+        e.prepared = static_cast<int>(stories.size()) - 1;
+      } catch (const Error& err) {
+        e.row["error"] = err.what();
+        spdlog::warn("story {} '{}' ({}) failed to run: {}", i, input.theme, difficulty,
+                     err.what());
+      }
+      entries.push_back(std::move(e));
+    }
+  const auto t1 = std::chrono::steady_clock::now();
+  std::vector<StoryRun> runs(stories.size());
+  std::vector<std::exception_ptr> errors(stories.size());
+  const size_t batch = !o.batched         ? 1
+                       : o.batch_size > 0 ? static_cast<size_t>(o.batch_size)
+                                          : std::max<size_t>(stories.size(), 1);
+  for (size_t b0 = 0; b0 < stories.size(); b0 += batch) {
+    const size_t b1 = std::min(stories.size(), b0 + batch);
+    const std::vector<PreparedStory> part(stories.begin() + b0, stories.begin() + b1);
+    const std::vector<fsm::StoryOptions> part_options(story_options.begin() + b0,
+                                                      story_options.begin() + b1);
+    std::vector<std::exception_ptr> part_errors;
+    auto part_runs = RunStories(part, policies, part_options, &part_errors, o.batched ? 0 : 1);
+    for (size_t j = 0; j < part_runs.size(); ++j) {
+      runs[b0 + j] = std::move(part_runs[j]);
+      errors[b0 + j] = part_errors[j];
+    }
+  }
+  stories.clear();  // each run holds its story
+  const auto t2 = std::chrono::steady_clock::now();
+
   nlohmann::json rows = nlohmann::json::array(), per = nlohmann::json::object();
   std::vector<Eigen::MatrixXd> all_features;
-  ProgressReporter progress("eval_story",
-                            static_cast<int64_t>(o.difficulties.size()) * o.stories_per_difficulty,
-                            "stories", 5.0);
+  ProgressReporter progress("eval_story", static_cast<int64_t>(entries.size()), "stories", 5.0);
   int64_t done = 0;
+  size_t next = 0;
   for (const auto& difficulty : o.difficulties) {
     double sr = 0, ce = 0, ss = 0, pen = 0, depth = 0, slide = 0;
     int n = 0;
     std::vector<Eigen::MatrixXd> features;
     for (int i = 0; i < o.stories_per_difficulty; ++i) {
-      const StoryInput input = EvalStoryInput(o, themes_json["themes"], difficulty, i);
-      const std::string& theme = input.theme;
-      nlohmann::json row = {{"difficulty", difficulty}, {"theme", theme}, {"seed", input.seed}};
-      try {
-        story.seed = input.seed;
-        const StoryRun run = RunStory(PrepareStory(input), policies, story);
-        if (!o.outputs_dir.empty())
-          WriteStoryRun(o.outputs_dir / (difficulty + "_" + std::to_string(i)), run);
-        const fsm::StoryResult& result = run.result;
-        const io::MotionRecord& record = run.record;
-        const scene::SceneOccupancy occupancy(*run.story.scene);
-        const auto p =
-            eval::MotionPenetration(record, occupancy, eval::BodySamplePoints(*run.humanoid));
-        const auto s = eval::MeasureFootSliding(record);
-        features.push_back(eval::PoseFeatures(record, 3));
-        row["keyframes"] = result.keyframes.size();
-        row["success_rate"] = result.success_rate;
-        row["contact_error"] = result.mean_contact_error;
-        row["success_steps"] = result.success_steps;
-        row["falls"] = result.falls;
-        row["penetration_fraction"] = p.fraction_inside;
-        row["penetration_mean_depth"] = p.mean_depth;
-        row["penetration_max_depth"] = p.max_depth;
-        row["foot_sliding_m_per_s"] = s.mean_speed;
-        row["style_z"] = !run.story.styles.empty();  // captions were turned into z
-        sr += result.success_rate, ce += result.mean_contact_error, ss += result.success_steps;
-        pen += p.fraction_inside, depth = std::max(depth, p.max_depth), slide += s.mean_speed;
-        ++n;
-      } catch (const Error& e) {
-        row["error"] = e.what();
-        spdlog::warn("story {} '{}' ({}) failed to run: {}", i, theme, difficulty, e.what());
+      Entry& e = entries[next++];
+      nlohmann::json& row = e.row;
+      if (e.prepared >= 0) {
+        try {
+          if (errors[e.prepared]) std::rethrow_exception(errors[e.prepared]);
+          const StoryRun& run = runs[e.prepared];
+          if (!o.outputs_dir.empty())
+            WriteStoryRun(o.outputs_dir / (difficulty + "_" + std::to_string(i)), run);
+          const fsm::StoryResult& result = run.result;
+          const io::MotionRecord& record = run.record;
+          const scene::SceneOccupancy occupancy(*run.story.scene);
+          const auto p =
+              eval::MotionPenetration(record, occupancy, eval::BodySamplePoints(*run.humanoid));
+          const auto s = eval::MeasureFootSliding(record);
+          features.push_back(eval::PoseFeatures(record, 3));
+          row["keyframes"] = result.keyframes.size();
+          row["success_rate"] = result.success_rate;
+          row["contact_error"] = result.mean_contact_error;
+          row["success_steps"] = result.success_steps;
+          row["falls"] = result.falls;
+          row["penetration_fraction"] = p.fraction_inside;
+          row["penetration_mean_depth"] = p.mean_depth;
+          row["penetration_max_depth"] = p.max_depth;
+          row["foot_sliding_m_per_s"] = s.mean_speed;
+          row["style_z"] = !run.story.styles.empty();  // captions were turned into z
+          sr += result.success_rate, ce += result.mean_contact_error, ss += result.success_steps;
+          pen += p.fraction_inside, depth = std::max(depth, p.max_depth), slide += s.mean_speed;
+          ++n;
+        } catch (const Error& err) {
+          row["error"] = err.what();
+          spdlog::warn("story {} '{}' ({}) failed to run: {}", i, row["theme"].get<std::string>(),
+                       difficulty, err.what());
+        }
+        runs[e.prepared] = StoryRun();  // its motion and scene are done with
       }
       rows.push_back(row);
       progress.Update(++done);
@@ -114,6 +167,8 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       {"stories", rows},
       {"policies", policies.source.string()},
       {"ablation", ConfigToJson(o.story.ablation)},
+      {"batched", o.batched},
+      {"batch_size", batch},
       {"feature",
        "per-frame heading-frame body positions (42) + joint rotations (72), every 3rd frame"}};
   if (!all_features.empty()) {
@@ -124,7 +179,75 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       out["reference_apd"] = eval::AveragePairwiseDistance(reference);
     }
   }
+  const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+  out["timing"] = {{"prepare_s", seconds(t0, t1)},
+                   {"run_s", seconds(t1, t2)},
+                   {"measure_s", seconds(t2, std::chrono::steady_clock::now())}};
   return out;
+}
+
+nlohmann::json BenchStories(const StoryEvalOptions& o) {
+  const auto themes_path = o.themes.empty() ? ConfigPath("eval/story_themes.json") : o.themes;
+  const auto themes = ReadJsonFile(themes_path).at("themes");
+  const auto policies =
+      fsm::LoadPolicySet(o.policies.empty() ? fsm::DefaultPolicySetPath() : o.policies);
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a) {
+    return std::chrono::duration<double>(Clock::now() - a).count();
+  };
+  std::vector<PreparedStory> stories;
+  std::vector<fsm::StoryOptions> options;
+  const auto t_prepare = Clock::now();
+  for (const auto& difficulty : o.difficulties)
+    for (int i = 0; i < o.stories_per_difficulty; ++i) {
+      const StoryInput input = EvalStoryInput(o, themes, difficulty, i);
+      stories.push_back(PrepareStory(input));
+      options.push_back(o.story);
+      options.back().missing_policy_fails = true;
+      options.back().seed = input.seed;
+    }
+  const double prepare_s = seconds(t_prepare);
+  spdlog::info("bench_story: {} stories prepared in {:.1f} s; running them one by one",
+               stories.size(), prepare_s);
+  std::vector<StoryRun> sequential;
+  const auto t_sequential = Clock::now();
+  for (size_t i = 0; i < stories.size(); ++i)
+    sequential.push_back(RunStory(stories[i], policies, options[i]));
+  const double sequential_s = seconds(t_sequential);
+  spdlog::info("bench_story: sequential {:.1f} s; running them batched", sequential_s);
+  const auto t_batched = Clock::now();
+  const std::vector<StoryRun> batched = RunStories(stories, policies, options);
+  const double batched_s = seconds(t_batched);
+  bool identical = true;
+  double simulated_s = 0;
+  int64_t frames = 0;
+  for (size_t i = 0; i < stories.size(); ++i) {
+    const StoryRun &a = sequential[i], &b = batched[i];
+    simulated_s += a.result.duration_s;
+    frames += a.record.num_frames();
+    bool same = fsm::StoryResultToJson(a.result) == fsm::StoryResultToJson(b.result) &&
+                a.record.num_frames() == b.record.num_frames();
+    for (int f = 0; same && f < a.record.num_frames(); ++f) {
+      const auto &x = a.record.frames[f], &y = b.record.frames[f];
+      same = x.root_pos == y.root_pos && x.root_rot.coeffs() == y.root_rot.coeffs() &&
+             x.dof_pos == y.dof_pos;
+    }
+    if (!same) spdlog::warn("bench_story: story {} differs batched", i);
+    identical = identical && same;
+  }
+  return {{"stories", stories.size()},
+          {"difficulties", o.difficulties},
+          {"seed", o.seed},
+          {"threads", ThreadCount()},
+          {"prepare_s", prepare_s},
+          {"sequential_s", sequential_s},
+          {"batched_s", batched_s},
+          {"speedup", batched_s > 0 ? sequential_s / batched_s : 0.0},
+          {"identical", identical},
+          {"simulated_s", simulated_s},
+          {"frames", frames},
+          {"frames_per_s_sequential", frames / std::max(sequential_s, 1e-9)},
+          {"frames_per_s_batched", frames / std::max(batched_s, 1e-9)}};
 }
 
 }  // namespace sims::story

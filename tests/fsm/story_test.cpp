@@ -198,6 +198,140 @@ TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
   }
 }
 
+// Equal to the bit: outcomes (as result.json has them), keyframe annotations and every frame.
+void ExpectSameRun(const StoryResult& a, const io::MotionRecord& ra, const StoryResult& b,
+                   const io::MotionRecord& rb) {
+  EXPECT_EQ(StoryResultToJson(a), StoryResultToJson(b));
+  ASSERT_EQ(ra.num_frames(), rb.num_frames());
+  for (int f = 0; f < ra.num_frames(); ++f) {
+    const auto &x = ra.frames[f], &y = rb.frames[f];
+    ASSERT_TRUE(x.root_pos == y.root_pos && x.root_rot.coeffs() == y.root_rot.coeffs() &&
+                x.dof_pos == y.dof_pos)
+        << "frame " << f;
+  }
+  ASSERT_EQ(ra.keyframes.size(), rb.keyframes.size());
+  for (size_t k = 0; k < ra.keyframes.size(); ++k) {
+    EXPECT_EQ(ra.keyframes[k].start_frame, rb.keyframes[k].start_frame);
+    EXPECT_EQ(ra.keyframes[k].end_frame, rb.keyframes[k].end_frame);
+    EXPECT_EQ(ra.keyframes[k].success, rb.keyframes[k].success);
+    EXPECT_EQ(ra.keyframes[k].detail, rb.keyframes[k].detail);
+  }
+}
+
+// Characters in different scenes run in lock-step (one policy call per policy per control step
+// over all of them, the environments on two threads) do exactly what each does alone; a
+// scripted character (an action override) that falls, tries to get up and is reset standing
+// mixes with policy-driven ones.
+TEST(StoryBatchTest, BatchedStoriesEqualStoriesRunOneAtATime) {
+  const PolicySet policies = LoadPolicySet(TinyPolicySetWithGetUp());
+  auto walk_to = [](double x, double y) {
+    Instruction in;
+    in.keyframe = 0;
+    in.skill = "walk";
+    in.caption = "walk";
+    in.target.point = {x, y, 0};
+    in.target.has_point = true;
+    return in;
+  };
+  struct Case {
+    std::string scene;
+    uint64_t seed;
+    std::vector<Instruction> instructions;
+    Eigen::Vector3d start;
+    double heading;
+    bool scripted;
+  };
+  const std::vector<Case> cases = {
+      {"chair", 0, {walk_to(3, 4), walk_to(1, 1)}, {3, 0, 0}, 0.5, false},
+      {"empty", 7, {walk_to(1, 0), walk_to(-1, 1)}, {0, 0, 0}, -1.0, false},
+      {"chair", 0, {walk_to(3, 4), walk_to(3, 0)}, {3, 0, 0}, 0.0, true},
+      {"chair", 5, {walk_to(3, 0.5)}, {3, 0, 0}, 2.0, false},
+  };
+  StoryOptions o;
+  o.walk_timeout_s = 2.0;
+  o.skill_timeout_s = 0.5;
+  std::vector<std::unique_ptr<StoryRunner>> runners;
+  auto make_runner = [&](const Case& c) {
+    StoryOptions co = o;
+    co.seed = c.seed;
+    auto r = std::make_unique<StoryRunner>(
+        std::make_shared<scene::Scene>(scene::BuiltinScene(c.scene)), policies, co);
+    if (c.scripted) {
+      const StoryRunner* self = r.get();
+      // The walk collapses, the get-up holds the standing targets (and times out).
+      r->SetActionOverride([self](const std::string& skill, const float*, float* a) {
+        const double standing[sim::kNumDofs] = {0};
+        if (skill == "walk")
+          std::fill(a, a + sim::kNumDofs, -1.0f);
+        else
+          self->humanoid()->TargetsToAction(standing, a);
+      });
+    }
+    return r;
+  };
+  std::vector<StoryResult> alone;
+  std::vector<io::MotionRecord> alone_records;
+  for (const Case& c : cases) {
+    auto r = make_runner(c);
+    io::MotionRecordBuilder rec(r->humanoid());
+    alone.push_back(r->Run(c.instructions, c.start, c.heading, &rec));
+    alone_records.push_back(rec.Finish());
+  }
+  std::vector<std::unique_ptr<io::MotionRecordBuilder>> recorders;
+  std::vector<StoryJob> jobs;
+  for (const Case& c : cases) {
+    runners.push_back(make_runner(c));
+    recorders.push_back(std::make_unique<io::MotionRecordBuilder>(runners.back()->humanoid()));
+    jobs.push_back(
+        {runners.back().get(), &c.instructions, c.start, c.heading, recorders.back().get()});
+  }
+  const std::vector<StoryResult> batched = RunStoriesBatched(jobs, 2);
+  ASSERT_EQ(batched.size(), cases.size());
+  int falls = 0;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE("story " + std::to_string(i));
+    ExpectSameRun(alone[i], alone_records[i], batched[i], recorders[i]->Finish());
+    falls += alone[i].falls;
+  }
+  EXPECT_GT(falls, 0) << "the get-up path ran in the batch";
+  // A runner runs its next story from scratch.
+  io::MotionRecordBuilder again(runners[0]->humanoid());
+  const StoryResult rerun =
+      runners[0]->Run(cases[0].instructions, cases[0].start, cases[0].heading, &again);
+  ExpectSameRun(alone[0], alone_records[0], rerun, again.Finish());
+}
+
+// A story that cannot start (a missing policy, strict options) stops alone; the others finish.
+TEST(StoryBatchTest, AFailingStoryDoesNotStopTheOthers) {
+  const PolicySet policies = LoadPolicySet(TinyPolicySet());
+  StoryOptions o;
+  o.walk_timeout_s = 0.5;
+  o.missing_policy_fails = false;
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
+  StoryRunner a(scene, policies, o), b(scene, policies, o);
+  Instruction walk;
+  walk.skill = "walk";
+  walk.target.point = {3, 2, 0};
+  walk.target.has_point = true;
+  Instruction sit;
+  sit.skill = "sit";
+  sit.target.object = 0;
+  const std::vector<Instruction> good = {walk}, bad = {sit};
+  std::vector<std::exception_ptr> errors;
+  const auto r = RunStoriesBatched(
+      {{&a, &good, {3, 0, 0}, 0, nullptr}, {&b, &bad, {3, 0, 0}, 0, nullptr}}, 2, &errors);
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_FALSE(errors[0]);
+  ASSERT_TRUE(errors[1]);
+  EXPECT_THROW(std::rethrow_exception(errors[1]), Error);
+  ASSERT_EQ(r[0].keyframes.size(), 1u);
+  EXPECT_TRUE(r[1].keyframes.empty());
+  // Without an error list the first error is thrown.
+  EXPECT_THROW(
+      RunStoriesBatched({{&a, &good, {3, 0, 0}, 0, nullptr}, {&b, &bad, {3, 0, 0}, 0, nullptr}}),
+      Error);
+}
+
 TEST(InstructionTest, ScenePlanStepsBecomeWalkAndUnifiedInstructions) {
   const auto json = sims::testing::TestData("scene/sceneplan.json");
   const auto scene = scene::LoadScenePlan(json, sims::testing::TestData("scene/partnet"), "0000");

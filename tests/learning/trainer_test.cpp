@@ -8,6 +8,7 @@
 
 #include "common/test_util.h"
 #include "point_mass_env.h"
+#include "sims/core/paths.h"
 
 namespace sims::learning {
 namespace {
@@ -78,6 +79,23 @@ TEST(TrainerTest, CheckpointRestoresIdenticalActions) {
   EXPECT_THROW(Policy(dir / "missing.pt"), Error);
   std::filesystem::resize_file(dir / "policy.pt", 100);
   EXPECT_THROW(Policy(dir / "policy.pt"), Error);
+}
+
+// A batch gives every row exactly the action the row gets alone (the batched story FSM relies
+// on it), on the bundled walk policy, whose layer sizes the BLAS blocks.
+TEST(PolicyTest, RowExactBatchesGiveEachRowItsLoneAction) {
+  const Policy p(AssetPath("policies/walk/policy.pt"));
+  EXPECT_GE(p.RowExactRows(), 1);
+  EXPECT_LE(p.RowExactRows(), 64);
+  const int n = 37, d = p.obs_dim(), a = p.action_dim();
+  std::vector<float> obs(static_cast<size_t>(n) * d), batch(static_cast<size_t>(n) * a), one(a);
+  for (size_t i = 0; i < obs.size(); ++i) obs[i] = std::sin(0.37f * i);
+  p.ActRowExact(obs.data(), n, batch.data());
+  for (int r = 0; r < n; ++r) {
+    p.Act(obs.data() + static_cast<size_t>(r) * d, 1, one.data());
+    EXPECT_EQ(std::vector<float>(batch.begin() + r * a, batch.begin() + (r + 1) * a), one)
+        << "row " << r;
+  }
 }
 
 // A compact checkpoint (no replay buffer) is what a campaign commits between sessions: it is

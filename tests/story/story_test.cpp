@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -209,6 +210,80 @@ TEST(StoryPipelineTest, EvalStoryAndRunStoryGiveTheSameResult) {
   EXPECT_EQ(motion_eval, motion_run);
   EXPECT_EQ(ReadJsonFile(dir / "eval" / "simple_0" / "plan.json"),
             ReadJsonFile(dir / "run" / "plan.json"));
+}
+
+// Stories run together (each its own scene and seed, one policy call per policy per control
+// step over all of them) give what each gives run alone: per-keyframe outcomes, falls, success
+// and every motion frame; eval_story's report is the same batched or not.
+TEST(StoryBatchTest, BatchedStoriesEqualSequentialRuns) {
+  const auto dir = sims::testing::TempDir("story_batch");
+  std::ofstream(dir / "themes.json") << R"({"themes": ["a tired person comes home and rests",
+      "a person reads a book and then goes to bed", "someone waits for a friend"]})";
+  StoryEvalOptions o;
+  o.policies = fsm::DefaultPolicySetPath();
+  o.themes = dir / "themes.json";
+  o.difficulties = {"simple", "mid"};
+  o.stories_per_difficulty = 2;
+  o.seed = 11;
+  o.style_model = TinyStyleModel().string();
+  o.story = ShortOptions();
+  const auto themes = ReadJsonFile(o.themes)["themes"];
+  std::vector<PreparedStory> stories;
+  std::vector<fsm::StoryOptions> options;
+  for (const auto& d : o.difficulties)
+    for (int i = 0; i < o.stories_per_difficulty; ++i) {
+      const StoryInput input = EvalStoryInput(o, themes, d, i);
+      stories.push_back(PrepareStory(input));
+      options.push_back(o.story);
+      options.back().seed = input.seed;
+    }
+  const auto policies = BundledPolicies();
+  const std::vector<StoryRun> batched = RunStories(stories, policies, options, nullptr, 2);
+  ASSERT_EQ(batched.size(), stories.size());
+  std::set<std::string> scenes;
+  for (size_t i = 0; i < stories.size(); ++i) {
+    SCOPED_TRACE("story " + std::to_string(i));
+    const StoryRun alone = RunStory(stories[i], policies, options[i]);
+    const StoryRun& b = batched[i];
+    scenes.insert(b.story.scene->name);
+    EXPECT_EQ(fsm::StoryResultToJson(b.result), fsm::StoryResultToJson(alone.result));
+    EXPECT_GE(b.result.keyframes.size(), 2u);
+    EXPECT_EQ(b.options.seed, options[i].seed);
+    ASSERT_EQ(b.record.num_frames(), alone.record.num_frames());
+    EXPECT_GT(b.record.num_frames(), 1);
+    for (int f = 0; f < b.record.num_frames(); ++f) {
+      const auto &x = b.record.frames[f], &y = alone.record.frames[f];
+      ASSERT_TRUE(x.root_pos == y.root_pos && x.root_rot.coeffs() == y.root_rot.coeffs() &&
+                  x.dof_pos == y.dof_pos)
+          << "frame " << f;
+    }
+    ASSERT_EQ(b.record.keyframes.size(), alone.record.keyframes.size());
+    for (size_t k = 0; k < b.record.keyframes.size(); ++k) {
+      EXPECT_EQ(b.record.keyframes[k].start_frame, alone.record.keyframes[k].start_frame);
+      EXPECT_EQ(b.record.keyframes[k].end_frame, alone.record.keyframes[k].end_frame);
+    }
+  }
+  EXPECT_GT(scenes.size(), 1u) << "the batch spans several scenes";
+
+  // eval_story: the same report (timing aside) batched, in batches of 3, and one by one.
+  const auto strip = [](nlohmann::json r) {
+    r.erase("timing");
+    r.erase("batched");
+    r.erase("batch_size");
+    return r;
+  };
+  o.batched = false;
+  const auto sequential = EvaluateStories(o);
+  EXPECT_FALSE(sequential["batched"].get<bool>());
+  o.batched = true;
+  o.batch_size = 3;
+  const auto in_threes = EvaluateStories(o);
+  EXPECT_TRUE(in_threes["batched"].get<bool>());
+  EXPECT_EQ(in_threes["batch_size"], 3);
+  ASSERT_EQ(sequential["stories"].size(), 4u);
+  EXPECT_EQ(strip(in_threes), strip(sequential));
+  for (const auto& row : sequential["stories"]) EXPECT_FALSE(row.contains("error")) << row;
+  EXPECT_TRUE(in_threes["timing"].contains("run_s"));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // task hook's goals and the policy (each policy keeps its own normaliser).
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -88,6 +89,29 @@ struct StoryResult {
   double duration_s = 0;                   ///< Simulated seconds.
 };
 
+class StoryRunner;
+
+/// One story of a batch: the runner that owns its scene and environment, its instructions,
+/// start and (optional) motion recorder.
+struct StoryJob {
+  StoryRunner* runner = nullptr;                           ///< Not shared with another job.
+  const std::vector<Instruction>* instructions = nullptr;  ///< Outlives the run.
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();         ///< Free floor point (z ignored).
+  double start_heading = 0;                                ///< Radians about +z.
+  io::MotionRecordBuilder* recorder = nullptr;             ///< Frames and keyframe annotations.
+};
+
+/// Runs several stories in lock-step, one character per runner (each story has its own scene,
+/// so each runner has its own model and environment). Every control step makes one policy call
+/// per policy over all characters whose current skill uses it, then steps the runners'
+/// environments and FSMs in parallel (OpenMP over runners, `threads`; 0 = ThreadCount()); the
+/// policies are never called inside the parallel loop. Each result equals what
+/// StoryRunner::Run gives for that job alone, at any thread count. A job whose setup or run
+/// throws stops there: with `errors` its exception lands in (*errors)[i] (others go on);
+/// without, the first one (in job order) is rethrown after the others finish.
+std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>& jobs, int threads = 0,
+                                           std::vector<std::exception_ptr>* errors = nullptr);
+
 /// Runs stories in one scene.
 class StoryRunner {
  public:
@@ -101,7 +125,7 @@ class StoryRunner {
   /// recovery); throws sims::Error naming the policy-set file otherwise.
   void CheckPolicies(const std::vector<Instruction>& instructions) const;
   /// Runs the instructions from `start` (a free floor point; z ignored); appends frames and
-  /// keyframe annotations to `recorder` when given.
+  /// keyframe annotations to `recorder` when given. RunStoriesBatched with this one job.
   StoryResult Run(const std::vector<Instruction>& instructions, const Eigen::Vector3d& start,
                   double start_heading, io::MotionRecordBuilder* recorder);
   /// A free floor point 2–4 m from the first instruction's goal with a short path to it (the
@@ -118,6 +142,8 @@ class StoryRunner {
   std::shared_ptr<const sim::Humanoid> humanoid() const;
 
  private:
+  friend std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>&, int,
+                                                    std::vector<std::exception_ptr>*);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

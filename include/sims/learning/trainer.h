@@ -114,6 +114,14 @@ class Policy {
   int action_dim() const;
   /// Deterministic actions [n, action_dim] for observations [n, obs_dim].
   void Act(const float* obs, int n, float* actions) const;
+  /// What Act gives each row alone, to the bit, in as few Act calls as the BLAS allows: a batch
+  /// goes in chunks of RowExactRows() rows.
+  void ActRowExact(const float* obs, int n, float* actions) const;
+  /// The most rows one Act call takes while giving every row exactly what Act gives it alone.
+  /// A BLAS blocks a batch's rows (OpenBLAS 0.3.21 on this x86: blocks of four rows, then a
+  /// tail of 1-3 rows computed like a single row), and a block rounds unlike a lone row, so
+  /// this is probed once per policy on random rows (1 to 64 rows; at least 1).
+  int RowExactRows() const;
   /// Metadata stored with the policy (skill name, config, layout).
   const std::string& metadata_json() const;
 

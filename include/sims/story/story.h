@@ -8,6 +8,7 @@
 // The FSM (fsm/) only runs instructions; planning, captions → z and output files live here.
 #pragma once
 
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -83,6 +84,18 @@ struct StoryRun {
 /// Throws sims::Error when a needed policy is missing and options.missing_policy_fails is false.
 StoryRun RunStory(const PreparedStory& story, const fsm::PolicySet& policies,
                   const fsm::StoryOptions& options);
+
+/// Runs several prepared stories at once, story i with options[i] (its seed): each gets its own
+/// runner (its scene, environment and start), and all advance in lock-step with one policy call
+/// per policy per control step (fsm::RunStoriesBatched; the environments step on `threads`
+/// threads, 0 = ThreadCount()). runs[i] equals RunStory(stories[i], policies, options[i]). A
+/// story that cannot be set up or run gets its exception in (*errors)[i] and an empty run (its
+/// `story` filled in) while the others go on; without `errors` the first one is rethrown.
+std::vector<StoryRun> RunStories(const std::vector<PreparedStory>& stories,
+                                 const fsm::PolicySet& policies,
+                                 const std::vector<fsm::StoryOptions>& options,
+                                 std::vector<std::exception_ptr>* errors = nullptr,
+                                 int threads = 0);
 
 /// result.json content: the FSM result plus planner, scene, seed, policies and styles.
 nlohmann::json StoryRunToJson(const StoryRun& run);

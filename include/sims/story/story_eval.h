@@ -31,6 +31,12 @@ struct StoryEvalOptions {
   /// When set, each story's run_story outputs go to DIR/<difficulty>_<i> (WriteStoryRun).
   std::filesystem::path outputs_dir;
   fsm::StoryOptions story;  ///< FSM settings; missing skill policies count as failures.
+  /// Run the stories together (story::RunStories: one policy call per policy per control step
+  /// over all of them) instead of one after another; the results are the same.
+  bool batched = true;
+  /// At most this many stories run together (0 = all); bounds the memory of their scenes
+  /// (30 stories of the built-in layouts: ~0.7 GB).
+  int batch_size = 32;
   /// LLM fall-backs for planning the themes (planner::PlanRequest::environment); eval_story
   /// passes InstalledEnvironment(), the default fills nothing.
   Environment environment;
@@ -42,7 +48,14 @@ struct StoryEvalOptions {
 StoryInput EvalStoryInput(const StoryEvalOptions& options, const nlohmann::json& themes,
                           const std::string& difficulty, int index);
 
-/// Runs the protocol; returns per-difficulty and overall metrics plus per-story rows.
+/// Runs the protocol; returns per-difficulty and overall metrics plus per-story rows, and how
+/// the stories ran ("batched", "batch_size", "timing": seconds to prepare, run and measure).
 nlohmann::json EvaluateStories(const StoryEvalOptions& options);
+
+/// Times the protocol's stories (options.difficulties × stories_per_difficulty, planned as
+/// EvaluateStories plans them) run one after another (RunStory each) and batched (RunStories,
+/// ThreadCount() threads); checks that both give the same outcomes and motion to the bit.
+/// Returns {"stories", "sequential_s", "batched_s", "speedup", "identical", "threads", ...}.
+nlohmann::json BenchStories(const StoryEvalOptions& options);
 
 }  // namespace sims::story
