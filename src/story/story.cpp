@@ -2,6 +2,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <utility>
 
@@ -204,11 +205,20 @@ namespace {
 // 3 s of motion).
 nlohmann::json KeyframeStyles(const StoryRun& run) {
   nlohmann::json out = nlohmann::json::array();
-  const std::filesystem::path manifest = DataPath("motions/synthetic/manifest.json");
-  std::unique_ptr<motion::MotionLibrary> lib;
-  if (std::filesystem::exists(manifest) && run.humanoid)
-    lib = std::make_unique<motion::MotionLibrary>(
-        motion::MotionLibrary::Load(manifest, run.humanoid));
+  // The clips and per-skill classifiers are built once per process: an evaluation writes many
+  // stories, and training the classifiers for each story cost more than running it.
+  static std::mutex mu;
+  static std::unique_ptr<motion::MotionLibrary> lib;
+  static std::map<std::string, std::unique_ptr<eval::StyleClassifier>> classifiers;
+  static bool loaded = false;
+  std::lock_guard<std::mutex> lock(mu);
+  if (!loaded && run.humanoid) {
+    loaded = true;
+    const std::filesystem::path manifest = DataPath("motions/synthetic/manifest.json");
+    if (std::filesystem::exists(manifest))
+      lib = std::make_unique<motion::MotionLibrary>(
+          motion::MotionLibrary::Load(manifest, run.humanoid));
+  }
   std::map<std::string, std::string> emotion_of;  // clip name → emotion
   if (lib)
     for (int i = 0; i < lib->num_clips(); ++i)
@@ -226,7 +236,6 @@ nlohmann::json KeyframeStyles(const StoryRun& run) {
     }
     return "";
   };
-  std::map<std::string, std::unique_ptr<eval::StyleClassifier>> classifiers;
   auto classifier = [&](const std::string& skill) -> const eval::StyleClassifier* {
     auto it = classifiers.find(skill);
     if (it != classifiers.end()) return it->second.get();
