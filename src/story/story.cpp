@@ -12,6 +12,7 @@
 #include "sims/eval/style_classifier.h"
 #include "sims/io/story_outputs.h"
 #include "sims/language/embedding_bank.h"
+#include "sims/language/retrieval_eval.h"
 #include "sims/motion/motion_library.h"
 #include "sims/planner/planner.h"
 #include "sims/planner/sentence.h"
@@ -223,18 +224,11 @@ nlohmann::json KeyframeStyles(const StoryRun& run) {
   if (lib)
     for (int i = 0; i < lib->num_clips(); ++i)
       emotion_of[lib->clip(i).meta().name] = lib->clip(i).meta().emotion;
-  // Bank keys are "<name>" or "<mirrored name>#mirror"; a mirror keeps its source's emotion.
-  auto emotion_of_key = [&](std::string key) -> std::string {
-    key = key.substr(0, key.find('#'));
-    for (int pass = 0; pass < 2; ++pass) {
-      const auto it = emotion_of.find(key);
-      if (it != emotion_of.end()) return it->second;
-      const std::string suffix = "_mirror";
-      if (key.size() > suffix.size() &&
-          key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
-        key.resize(key.size() - suffix.size());
-    }
-    return "";
+  // A bank key names a clip style (mirror and variant suffixes, ClipStyleOf strips them); every
+  // variant and mirror of a style carries its emotion.
+  auto emotion_of_key = [&](const std::string& key) -> std::string {
+    const auto it = emotion_of.find(language::ClipStyleOf(key));
+    return it == emotion_of.end() ? "" : it->second;
   };
   auto classifier = [&](const std::string& skill) -> const eval::StyleClassifier* {
     auto it = classifiers.find(skill);
