@@ -176,5 +176,66 @@ TEST(WalkStyleTest, SpeedFollowsTheStyleClip) {
                    c.target_speed);
 }
 
+
+// With style_pose_weight the task reward mixes in exp(−scale·mean_j (q̃_j − q̄_j)²), q̄ the
+// style clip's mean joint angles and q̃ the character's running-average posture: 1 at the
+// clip's mean posture, e^(−scale·δ²) when every joint is δ off, and different clips (styles)
+// hold different postures. q̃ starts at the reset pose, moves by control_dt/style_pose_time
+// of the gap per step, and survives a snapshot.
+TEST(WalkStyleTest, PoseRewardFollowsTheStyleClipsMeanPosture) {
+  SkillConfig c;
+  c.motion.manifest = testing::SyntheticManifest({"walk"});
+  c.motion.skills = {"walk"};
+  c.style_conditioned = true;
+  c.walk.style_pose_weight = 0.3;
+  c.walk.style_pose_scale = 50.0;
+  c.walk.style_pose_time = 0.5;
+  auto s = testing::MakeSkillEnv(c, 4);
+  auto* walk = dynamic_cast<WalkSkill*>(s.setup.skill.get());
+  ASSERT_NE(walk, nullptr);
+  const auto& lib = *s.setup.context.motions;
+  s.env->ResetEnv(0);
+  const int clip = walk->style_id(0);
+  ASSERT_GE(clip, 0);
+  auto clip_mean = [&](int k) {
+    WalkSkill::JointAngles m = WalkSkill::JointAngles::Zero();
+    for (const auto& f : lib.clip(k).frames()) m += f.dof_pos;
+    return WalkSkill::JointAngles(m / lib.clip(k).num_frames());
+  };
+  const WalkSkill::JointAngles mean = clip_mean(clip);
+  EXPECT_NEAR(walk->StylePoseReward(0, mean), 1.0, 1e-12);
+  const WalkSkill::JointAngles off = mean + WalkSkill::JointAngles::Constant(0.1);
+  EXPECT_NEAR(walk->StylePoseReward(0, off), std::exp(-50.0 * 0.01), 1e-12);
+  double worst = 1.0;
+  for (int k = 0; k < lib.num_clips(); ++k)
+    worst = std::min(worst, walk->StylePoseReward(0, clip_mean(k)));
+  EXPECT_LT(worst, 0.5);
+
+  // The running average: the reset pose, then one step of a = dt / time towards the pose.
+  for (int i = 0; i < 4; ++i) s.env->ResetEnv(i);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(walk->average_pose(i), s.env->pose(i).dof_pos);
+  const WalkSkill::JointAngles before = walk->average_pose(1);
+  std::vector<float> act(4 * sim::kNumDofs, 0.3f);
+  s.env->Step(act.data());
+  const double a = s.env->control_dt() / 0.5;
+  const WalkSkill::JointAngles expected = before + a * (s.env->pose(1).dof_pos - before);
+  EXPECT_LT((walk->average_pose(1) - expected).norm(), 1e-12);
+  EXPECT_GT((walk->average_pose(1) - before).norm(), 1e-6);
+  for (int t = 0; t < 5; ++t) s.env->Step(act.data());
+  const std::string snap = s.env->SaveState();
+  auto other = testing::MakeSkillEnv(c, 4);
+  other.env->LoadState(snap);
+  auto* walk2 = dynamic_cast<WalkSkill*>(other.setup.skill.get());
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(walk2->average_pose(i), walk->average_pose(i));
+
+  // Off (the default): no clip postures are kept and the term is 1.
+  c.walk.style_pose_weight = 0.0;
+  auto plain = testing::MakeSkillEnv(c, 1);
+  plain.env->ResetEnv(0);
+  EXPECT_EQ(dynamic_cast<WalkSkill*>(plain.setup.skill.get())->StylePoseReward(0, off), 1.0);
+  c.walk.style_pose_weight = 1.5;  // a share outside [0, 1] is a config error
+  EXPECT_THROW(c.walk.Validate(), Error);
+}
+
 }  // namespace
 }  // namespace sims::task

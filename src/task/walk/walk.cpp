@@ -42,6 +42,15 @@ WalkSkill::WalkSkill(const SkillConfig& config, const SkillContext& context)
     reference_clips_ = context.motions->Find("walk");
     if (reference_clips_.empty())
       for (int c = 0; c < context.motions->num_clips(); ++c) reference_clips_.push_back(c);
+    if (config.walk.style_pose_weight > 0) {
+      pose_average_.assign(n, JointAngles::Zero());
+      for (int c = 0; c < context.motions->num_clips(); ++c) {
+        const auto& frames = context.motions->clip(c).frames();
+        JointAngles mean = JointAngles::Zero();
+        for (const auto& f : frames) mean += f.dof_pos;
+        clip_mean_pose_.push_back(mean / static_cast<double>(frames.size()));
+      }
+    }
   }
 }
 
@@ -78,6 +87,7 @@ void WalkSkill::OnReset(const sim::EnvView& view, Rng& rng) {
   target_rng_[i] = Rng(rng.NextU64());
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
   prev_velocity_[i] = view.pose->root_lin_vel.head<2>();
+  if (!pose_average_.empty()) pose_average_[i] = view.pose->dof_pos;
   SetTarget(i, SampleTarget(root, target_rng_[i]));
 }
 
@@ -105,6 +115,13 @@ double WalkSkill::target_speed(int env_id) const {
   const auto it = params.find("speed");
   if (it == params.end()) return config_.target_speed;
   return std::clamp(it->second, config_.walk.style_speed_min, config_.walk.style_speed_max);
+}
+
+double WalkSkill::StylePoseReward(int env_id, const JointAngles& mean_pose) const {
+  const int clip = style_id(env_id);
+  if (clip < 0 || clip >= static_cast<int>(clip_mean_pose_.size())) return 1.0;
+  const double mse = (mean_pose - clip_mean_pose_[clip]).squaredNorm() / sim::kNumDofs;
+  return std::exp(-config_.walk.style_pose_scale * mse);
 }
 
 double WalkSkill::goal_error(const sim::EnvView& view) const {
@@ -139,8 +156,14 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   const Eigen::Vector2d facing(std::cos(heading), std::sin(heading));
 
   sim::TaskStepResult r;
-  r.reward =
-      static_cast<float>(Reward(target_[i], root, vel, prev_velocity_[i], facing, target_speed(i)));
+  double reward = Reward(target_[i], root, vel, prev_velocity_[i], facing, target_speed(i));
+  const double w = config_.walk.style_pose_weight;
+  if (w > 0 && !pose_average_.empty()) {
+    const double a = std::min(1.0, view.control_dt / config_.walk.style_pose_time);
+    pose_average_[i] += a * (view.pose->dof_pos - pose_average_[i]);
+    reward = (1 - w) * reward + w * StylePoseReward(i, pose_average_[i]);
+  }
+  r.reward = static_cast<float>(reward);
   prev_velocity_[i] = vel;
   r.success = (target_[i] - root).norm() < config_.walk.success_radius;
   hold_[i] = r.success ? hold_[i] + 1 : 0;
@@ -159,6 +182,8 @@ std::vector<double> WalkSkill::SaveSkillState(int env_id) const {
     s.push_back(static_cast<double>(w >> 32));
     s.push_back(static_cast<double>(w & 0xffffffffull));
   }
+  if (!pose_average_.empty())
+    s.insert(s.end(), pose_average_[env_id].data(), pose_average_[env_id].data() + sim::kNumDofs);
   return s;
 }
 
@@ -174,7 +199,11 @@ void WalkSkill::LoadSkillState(int env_id, const double* d, size_t size) {
     const auto hi = static_cast<uint64_t>(r.Int("target_rng", 0, 0xffffffffll));
     w = (hi << 32) | static_cast<uint64_t>(r.Int("target_rng", 0, 0xffffffffll));
   }
+  JointAngles average = JointAngles::Zero();
+  if (!pose_average_.empty())
+    for (int j = 0; j < sim::kNumDofs; ++j) average[j] = r.Real("pose_average");
   r.ExpectEnd();
+  if (!pose_average_.empty()) pose_average_[env_id] = average;
   target_rng_[env_id].set_state(st);
 }
 
@@ -184,6 +213,10 @@ void WalkParams::Validate() const {
   Require(success_radius > 0, "walk_success_radius", "a positive radius (m)");
   Require(style_speed_min > 0 && style_speed_max >= style_speed_min, "style_speed_max",
           "speeds with 0 < style_speed_min ≤ style_speed_max (m/s)");
+  Require(style_pose_weight >= 0 && style_pose_weight <= 1, "style_pose_weight",
+          "a share in [0, 1]");
+  Require(style_pose_scale > 0, "style_pose_scale", "a positive scale (1/rad²)");
+  Require(style_pose_time > 0, "style_pose_time", "a positive time constant (s)");
 }
 
 // The registry entry: vocabulary traits (core/skill_vocabulary.cpp), params, scene, factory.

@@ -18,6 +18,15 @@ struct WalkParams {
   bool speed_from_style = false;
   double style_speed_min = 0.7;  ///< m/s (a 5 m evaluation target stays reachable in 10 s).
   double style_speed_max = 1.5;  ///< m/s.
+  /// Style-conditioned training: share of the task reward paid for the style clip's posture,
+  /// r = (1 − w)·r_walk + w·exp(−style_pose_scale·mean_j (q̃_j − q̄_j)²), q̄ the clip's mean
+  /// joint angles and q̃ the character's joint angles averaged over the last ~style_pose_time
+  /// seconds (an average, so the gait's swing is not punished). It gives the policy a dense
+  /// signal for the posture a style asks for (head bowed, arms tight) where a saturated
+  /// discriminator pays every agent motion about the same. 0 = off.
+  double style_pose_weight = 0.0;
+  double style_pose_scale = 50.0;  ///< 1/rad²: mean squared error 0.02 rad² pays e⁻¹.
+  double style_pose_time = 1.0;    ///< Time constant of the posture average (s).
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -29,6 +38,9 @@ struct WalkParams {
     a->Visit(SIMS_NVP(speed_from_style));
     a->Visit(SIMS_NVP(style_speed_min));
     a->Visit(SIMS_NVP(style_speed_max));
+    a->Visit(SIMS_NVP(style_pose_weight));
+    a->Visit(SIMS_NVP(style_pose_scale));
+    a->Visit(SIMS_NVP(style_pose_time));
   }
   /// Checks ranges.
   void Validate() const;
