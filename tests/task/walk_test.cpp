@@ -176,7 +176,6 @@ TEST(WalkStyleTest, SpeedFollowsTheStyleClip) {
                    c.target_speed);
 }
 
-
 // With style_pose_weight the task reward mixes in exp(−scale·mean_j (q̃_j − q̄_j)²), q̄ the
 // style clip's mean joint angles and q̃ the character's running-average posture: 1 at the
 // clip's mean posture, e^(−scale·δ²) when every joint is δ off, and different clips (styles)
@@ -229,10 +228,14 @@ TEST(WalkStyleTest, PoseRewardFollowsTheStyleClipsMeanPosture) {
   for (int i = 0; i < 4; ++i) EXPECT_EQ(walk2->average_pose(i), walk->average_pose(i));
 
   // Off (the default): no clip postures are kept and the term is 1.
-  c.walk.style_pose_weight = 0.0;
-  auto plain = testing::MakeSkillEnv(c, 1);
+  SkillConfig off_config = c;
+  off_config.walk.style_pose_weight = 0.0;
+  auto plain = testing::MakeSkillEnv(off_config, 4);
   plain.env->ResetEnv(0);
   EXPECT_EQ(dynamic_cast<WalkSkill*>(plain.setup.skill.get())->StylePoseReward(0, off), 1.0);
+  // A snapshot from before the term was on (a resumed campaign) loads; q̃ starts at q̄.
+  other.env->LoadState(plain.env->SaveState());
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(walk2->average_pose(i), clip_mean(walk2->style_id(i)));
   c.walk.style_pose_weight = 1.5;  // a share outside [0, 1] is a config error
   EXPECT_THROW(c.walk.Validate(), Error);
 }

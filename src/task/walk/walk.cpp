@@ -200,10 +200,19 @@ void WalkSkill::LoadSkillState(int env_id, const double* d, size_t size) {
     w = (hi << 32) | static_cast<uint64_t>(r.Int("target_rng", 0, 0xffffffffll));
   }
   JointAngles average = JointAngles::Zero();
-  if (!pose_average_.empty())
+  // A snapshot taken before the posture term was switched on (a resumed campaign) has no
+  // average: it starts at the style clip's mean and catches up within style_pose_time.
+  const bool has_average = !pose_average_.empty() && r.left() > 0;
+  if (has_average)
     for (int j = 0; j < sim::kNumDofs; ++j) average[j] = r.Real("pose_average");
   r.ExpectEnd();
-  if (!pose_average_.empty()) pose_average_[env_id] = average;
+  if (has_average) {
+    pose_average_[env_id] = average;
+  } else if (!pose_average_.empty()) {
+    const int clip = style_id(env_id);
+    const bool known = clip >= 0 && clip < static_cast<int>(clip_mean_pose_.size());
+    pose_average_[env_id] = known ? clip_mean_pose_[clip] : JointAngles::Zero();
+  }
   target_rng_[env_id].set_state(st);
 }
 
