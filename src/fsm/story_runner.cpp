@@ -266,7 +266,8 @@ struct StoryRunner::Impl {
   // enough, time-out), with the goal error and a note.
   std::optional<Outcome> CheckAttempt(AttemptState* a, double* error, std::string* note) {
     const std::string& skill = a->in->skill;
-    if (Fallen()) {
+    // A get-up starts fallen: only its success or time-out ends it.
+    if (run.phase != Phase::kRecover && Fallen()) {
       *error = GoalError(skill, a->target);
       return Outcome::kFall;
     }

@@ -186,6 +186,49 @@ TEST(StoryRecoveryTest, AFallHandsOverToTheGetUpPolicyBeforeTheStoryGoesOn) {
   EXPECT_GT(r.keyframes[0].end_time, 1.0) << "the get-up ran for its time-out";
 }
 
+// A get-up that succeeds hands the keyframe back for another attempt. Scripted: the fall
+// heights are above a standing character's, so every walk attempt "falls" at its first step,
+// and the get-up holds the standing pose (standing, upright, only the feet touching the
+// floor: the get-up's success). max_retries = 1: walk, get-up, walk again, get-up, and then
+// the retries are exhausted; max_retries = 0: one walk, one get-up, exhausted.
+TEST(StoryRecoveryTest, ASuccessfulGetUpRetriesTheKeyframeUntilRetriesRunOut) {
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
+  for (const int max_retries : {1, 0}) {
+    StoryOptions o;
+    o.walk_timeout_s = 2.0;
+    o.skill_timeout_s = 3.0;
+    o.max_retries = max_retries;
+    o.fallen_head_height = 2.0;
+    o.fallen_pelvis_height = 2.0;
+    StoryRunner runner(scene, LoadPolicySet(TinyPolicySetWithGetUp()), o);
+    std::vector<std::string> skills_seen;
+    runner.SetActionOverride([&](const std::string& skill, const float*, float* a) {
+      if (skills_seen.empty() || skills_seen.back() != skill) skills_seen.push_back(skill);
+      const double standing[sim::kNumDofs] = {0};
+      runner.humanoid()->TargetsToAction(standing, a);
+    });
+    Instruction walk;
+    walk.skill = "walk";
+    walk.target.point = {3, 4, 0};
+    walk.target.has_point = true;
+    const auto r = runner.Run({walk}, {3, 0, 0}, 0.0, nullptr);
+    ASSERT_EQ(r.keyframes.size(), 1u);
+    const KeyframeOutcome& k = r.keyframes[0];
+    EXPECT_EQ(k.retries, max_retries);
+    EXPECT_EQ(k.falls, max_retries + 1);
+    EXPECT_FALSE(k.success);
+    EXPECT_EQ(k.note, "fell; retries exhausted");
+    std::vector<std::string> expected;
+    for (int attempt = 0; attempt <= max_retries; ++attempt) {
+      expected.push_back("walk");
+      expected.push_back("getup");
+    }
+    EXPECT_EQ(skills_seen, expected);
+    // Each get-up ended by its success (held), well before its 3 s time-out.
+    EXPECT_LT(k.end_time, (max_retries + 1) * 2.0) << "the get-ups timed out";
+  }
+}
+
 TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
   Instruction sit;
   sit.skill = "sit";
