@@ -47,12 +47,6 @@ std::deque<SkillTraits> BuiltinSkills() {
   getup.recovers_falls = true;
   v.push_back(getup);
 
-  SkillTraits sit_getup;
-  sit_getup.name = "sit_getup";
-  sit_getup.description = "sit down, then get up again, in one episode (sit and get-up together)";
-  sit_getup.serves = {"sit", "getup"};
-  v.push_back(sit_getup);
-
   SkillTraits unified;
   unified.name = "unified";
   unified.description = "one policy for chains of contacts (UniHSI): sit, lean, lie, touch, walk";

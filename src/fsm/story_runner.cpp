@@ -84,11 +84,7 @@ LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& f
   p.skill_config = stored.skill;
   if (stored.env) p.env_config = *stored.env;
   const std::string trained = p.skill_config.skill;
-  // A policy runs its own skill and the ones its skill serves (sit_getup: sit and getup).
-  const SkillTraits* trained_traits = FindSkillTraits(trained);
-  const bool serves = trained_traits && std::count(trained_traits->serves.begin(),
-                                                   trained_traits->serves.end(), skill) > 0;
-  if (trained != skill && !serves)
+  if (trained != skill)
     ThrowInputError(file.string(), "metadata.extra.skill.skill",
                     "a policy trained for '" + skill + "'", "'" + trained + "'");
   // A story never resamples targets or loads clips: the FSM sets every goal.

@@ -26,6 +26,7 @@ void SkillConfig::Validate() const {
   Require(success_hold_steps >= 1, "success_hold_steps", "at least 1 step");
   walk.Validate();
   object.Validate();
+  getup.Validate();
 }
 
 Skill::Skill(const SkillConfig& config, const SkillContext& context)
@@ -177,7 +178,7 @@ namespace {
 std::deque<SkillInfo>& Registry() {
   static std::deque<SkillInfo> skills = {
       WalkSkillInfo(),  SitSkillInfo(),      LieSkillInfo(),     ReachSkillInfo(),
-      GetUpSkillInfo(), SitGetUpSkillInfo(), UnifiedSkillInfo(),
+      GetUpSkillInfo(), UnifiedSkillInfo(),
   };
   return skills;
 }

@@ -25,7 +25,6 @@ TEST(SkillVocabularyTest, TraitsReplaceNameTests) {
   EXPECT_TRUE(SkillTraitsOf("reach").hand_target);
   EXPECT_TRUE(SkillTraitsOf("getup").recovers_falls);
   EXPECT_FALSE(SkillTraitsOf("getup").needs_object);
-  EXPECT_EQ(SkillTraitsOf("sit_getup").serves, (std::vector<std::string>{"sit", "getup"}));
   EXPECT_TRUE(SkillTraitsOf("unified").contact_steps);
   EXPECT_EQ(SkillNames([](const SkillTraits& t) { return t.affordance; }), "sit, lie, reach");
   for (const SkillTraits& t : SkillVocabulary())

@@ -251,7 +251,7 @@ TEST(PolicyEvalTest, UnifiedOnAScenePlan) {
 }
 
 TEST(SkillConfigsTest, ShippedConfigsLoadAndCreateTheirSkills) {
-  for (const char* name : {"walk", "sit", "lie", "reach", "getup", "sit_getup", "unified"}) {
+  for (const char* name : {"walk", "sit", "lie", "reach", "getup", "unified"}) {
     SCOPED_TRACE(name);
     auto tc =
         LoadConfig<learning::TrainConfig>(ConfigPath(std::string("skills/") + name + ".json"));

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sims/core/parallel.h"
 #include "sims/scene/contact_targets.h"
 #include "task/task_test_util.h"
 
@@ -21,17 +22,32 @@ SkillConfig GetUpConfig() {
   c.object.object_categories = {"chair", "bed"};
   c.motion.manifest = testing::SyntheticManifest({"getup"});
   c.motion.skills = {"getup"};
+  c.getup.fall_states = 8;
   return c;
 }
 
+// Fall states lie on the floor, record how far their bodies reach, and are the same set at
+// any thread count (state k draws from seed + k).
 TEST(GetUpSkillTest, FallStatesLieOnTheFloor) {
-  const auto states = GenerateFallStates(4, 7);
-  ASSERT_EQ(states.size(), 4u);
-  for (const auto& p : states) {
+  const int threads = ThreadCount();
+  SetThreadCount(1);
+  const auto one = GenerateFallStates(6, 7);
+  SetThreadCount(2);
+  const auto two = GenerateFallStates(6, 7);
+  SetThreadCount(threads);
+  ASSERT_EQ(one.size(), 6u);
+  ASSERT_EQ(two.size(), 6u);
+  for (size_t k = 0; k < one.size(); ++k) {
+    const auto& p = one[k].pose;
     EXPECT_TRUE(p.root_pos.allFinite());
     EXPECT_LT(p.root_pos.z(), 0.5);  // down, not standing
     EXPECT_EQ(p.root_pos.x(), 0.0);
+    EXPECT_GT(one[k].reach, 0.2);
+    EXPECT_LT(one[k].reach, 1.5);
+    EXPECT_EQ(p.dof_pos, two[k].pose.dof_pos);
+    EXPECT_EQ(p.root_rot.coeffs(), two[k].pose.root_rot.coeffs());
   }
+  EXPECT_NE(one[0].pose.dof_pos, one[1].pose.dof_pos);
 }
 
 TEST(GetUpSkillTest, FallStartsHaveAGracePeriod) {
@@ -40,11 +56,17 @@ TEST(GetUpSkillTest, FallStartsHaveAGracePeriod) {
   auto s = MakeSkillEnv(c, 3);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
   ASSERT_NE(getup, nullptr);
-  EXPECT_EQ(getup->fall_states().size(), static_cast<size_t>(kNumFallStates));
+  EXPECT_EQ(getup->fall_states().size(), 8u);
   EXPECT_EQ(s.env->obs_dim(), 223 + 60 + 256 + 64);
   for (int i = 0; i < 3; ++i) {
-    EXPECT_TRUE(getup->fall_start(i));
+    EXPECT_EQ(getup->start(i), GetUpSkill::kFallStart);
+    EXPECT_EQ(getup->start_label(i), "fall");
     EXPECT_EQ(getup->phase(i), GetUpSkill::kFeetPhase);
+    // Placed clear of the furniture: every body is over free floor.
+    for (int b = 0; b < sim::kNumBodies; ++b)
+      EXPECT_LT(s.setup.context.height_grid->Height(s.env->bodies(i).pos[b].x(),
+                                                    s.env->bodies(i).pos[b].y()),
+                0.05);
     EXPECT_LT(s.env->pose(i).root_pos.z(), 0.5);
     // Stand point under the start; goals: pelvis at standing height plus both feet.
     EXPECT_NEAR((getup->stand_point(i) - s.env->pose(i).root_pos.head<2>()).norm(), 0, 1e-9);
@@ -54,7 +76,7 @@ TEST(GetUpSkillTest, FallStartsHaveAGracePeriod) {
   }
   // Lying on the floor does not end the episode during the grace period.
   std::vector<float> zero(3 * 28, 0.0f);
-  for (int t = 0; t < kFallGraceSteps - 5; ++t) {
+  for (int t = 0; t < c.getup.fall_grace_steps - 5; ++t) {
     s.env->Step(zero.data());
     for (int i = 0; i < 3; ++i) ASSERT_FALSE(s.env->dones()[i]) << "step " << t;
   }
@@ -68,14 +90,15 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
   const auto& scene = *s.setup.context.scene;
   int on_furniture = 0;
   for (int i = 0; i < 6; ++i) {
-    if (getup->fall_start(i)) continue;
+    if (getup->floor_start(i)) continue;
+    EXPECT_EQ(getup->start_label(i), getup->geometry(i).mattress >= 0 ? "bed" : "seat");
     const ObjectGeometry& g = getup->geometry(i);
     const int part = g.seat >= 0 ? g.seat : g.mattress;
     const Eigen::Vector3d pelvis = s.env->bodies(i).pos[sim::kPelvis];
     const double d =
         (scene::NearestPointOnPart(scene.objects[g.object].parts[part], pelvis) - pelvis).norm();
     EXPECT_LT(d, 0.3);
-    EXPECT_LT(pelvis.z(), kStandingPelvisHeight);
+    EXPECT_LT(pelvis.z(), c.getup.standing_pelvis_height);
     // The stand point is the object's free floor point nearest to the pelvis.
     EXPECT_FALSE(g.stand_points.empty());
     ++on_furniture;
@@ -112,33 +135,39 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
   EXPECT_EQ(getup->goal_mask(0), 1u << sim::kCjPelvis);
 }
 
-TEST(GetUpSkillTest, SitThenGetUpSwitchesGoalsInOneEpisode) {
+// Success is standing clear: upright with the head high, only the feet touching anything and
+// every contact on the floor. Standing on the bed, or bent over, is not getting up.
+TEST(GetUpSkillTest, SuccessIsStandingUprightOnTheFloorAlone) {
   SkillConfig c = GetUpConfig();
-  c.skill = "sit_getup";
-  c.object.object_categories = {"chair"};
-  c.motion.manifest = testing::SyntheticManifest({"sit"});
-  c.motion.skills = {"sit"};
+  c.object.object_categories = {"bed"};
+  c.object.num_objects = 1;
   c.reference_init_prob = 0;
   c.object.max_contact_force = 0;
-  c.success_hold_steps = 3;
   auto s = MakeSkillEnv(c, 1);
-  auto* sg = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
-  ASSERT_NE(sg, nullptr);
-  EXPECT_EQ(sg->name(), "sit_getup");
-  EXPECT_EQ(sg->phase(0), GetUpSkill::kSitPhase);
-  const ObjectGeometry& g = sg->geometry(0);
-  s.env->SetState(0, PoseAt(g.ToWorld(g.seat_local.center()) + Eigen::Vector3d(0, 0, 0.1)));
-  for (int k = 1; k <= 3; ++k) {
-    const auto r = sg->Step(ViewOf(*s.env, 0));
-    EXPECT_FALSE(r.success);  // sitting is not the episode's success
-    EXPECT_FALSE(r.truncate);
-  }
-  EXPECT_EQ(sg->phase(0), GetUpSkill::kFeetPhase);
-  EXPECT_NEAR(sg->goal(0, sim::kCjPelvis).z(), sim::kDefaultRootHeight, 1e-12);
-  // The stand point is in front of the chair.
-  const Eigen::Vector3d local =
-      g.X_WO.inverse() * Eigen::Vector3d(sg->stand_point(0).x(), sg->stand_point(0).y(), 0);
-  EXPECT_GT(local.x(), g.local.max.x());
+  auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  const Eigen::Vector2d stand = getup->stand_point(0);
+  // Feet pressed 2 cm into the floor (the default pose's soles are at z ≈ 0 at 0.89 m).
+  s.env->SetState(0, PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.87)));
+  EXPECT_GT(ViewOf(*s.env, 0).data->ncon, 0);
+  EXPECT_TRUE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
+  EXPECT_TRUE(getup->StandingClear(ViewOf(*s.env, 0)));
+  // The same pose on the mattress: standing, but on furniture.
+  const ObjectGeometry& g = getup->geometry(0);
+  const Eigen::Vector3d top = g.ToWorld(g.mattress_local.center());
+  s.env->SetState(0, PoseAt(Eigen::Vector3d(top.x(), top.y(), g.mattress_local.max.z() + 0.87)));
+  EXPECT_GT(ViewOf(*s.env, 0).data->ncon, 0);
+  EXPECT_TRUE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
+  EXPECT_FALSE(getup->StandingClear(ViewOf(*s.env, 0)));
+  // Bent over (torso pitched 60° forward at the abdomen): pelvis upright, torso and head not.
+  sim::HumanoidPose bent = PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.87));
+  bent.dof_pos[1] = 1.05;  // abdomen_y
+  s.env->SetState(0, bent);
+  EXPECT_FALSE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
+  // A higher head threshold than the standing head fails too.
+  s.env->SetState(0, PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.87)));
+  GetUpParams tall = c.getup;
+  tall.standing_head_height = s.env->bodies(0).pos[sim::kHead].z() + 0.01;
+  EXPECT_FALSE(GetUpSkill::Standing(s.env->bodies(0), tall));
 }
 
 }  // namespace

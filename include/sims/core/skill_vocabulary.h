@@ -36,7 +36,6 @@ struct SkillTraits {
   bool contact_steps = false;   ///< Runs UniHSI chain-of-contact steps (ScenePlans).
   StoryTiming timing = StoryTiming::kObject;  ///< Story time-out and success-hold class.
   std::string follow_up;  ///< Skill that ends the posture it leaves (sit, lie → getup), or "".
-  std::vector<std::string> serves;  ///< Other skills its trained policy also runs (sit_getup).
 };
 
 /// Every known skill: the built-in ones in a fixed order (the planner's scripted skills first:

@@ -26,6 +26,7 @@
 #include "sims/scene/ray_caster.h"
 #include "sims/scene/scene.h"
 #include "sims/sim/env.h"
+#include "sims/task/getup/getup_params.h"
 #include "sims/task/object_params.h"
 #include "sims/task/sit/sit_params.h"
 #include "sims/task/styles.h"
@@ -67,6 +68,7 @@ struct SkillConfig {
   WalkParams walk;                           ///< Walk (walk/walk_params.h).
   ObjectParams object;                       ///< Object skills (object_params.h).
   SitParams sit;                             ///< Sit (sit/sit_params.h).
+  GetUpParams getup;                         ///< Get-up (getup/getup_params.h).
 
   /// Lists the fields for JSON binding (the params structs' keys inline).
   template <class A>
@@ -83,6 +85,7 @@ struct SkillConfig {
     walk.Serialize(a);
     object.Serialize(a);
     sit.Serialize(a);
+    getup.Serialize(a);
   }
   /// Checks ranges (the params structs' too).
   void Validate() const;
@@ -152,6 +155,9 @@ class Skill : public sim::TaskHook {
   /// The distance (m) env view.env_id's success test compares with its threshold, for
   /// evaluation and story metrics; 0 for a skill without one.
   virtual double goal_error(const sim::EnvView& view) const;
+  /// How env `env_id`'s current episode started, for evaluation broken down by start kind
+  /// (get-up: "seat", "bed", "floor", "fall"); "" when the skill has no such kinds.
+  virtual std::string start_label(int env_id) const { return ""; }
   /// Width of the skill's own observation segment "task" after the contact goals (0: none).
   virtual int task_obs_dim() const { return 0; }
   /// Writes task_obs_dim() values for env view.env_id.

@@ -1,9 +1,13 @@
 #include "sims/task/getup/getup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 
 #include "sims/core/error.h"
+#include "sims/core/parallel.h"
 #include "sims/sim/features.h"
 #include "sims/task/sit/sit.h"
 
@@ -14,78 +18,146 @@ namespace {
 constexpr int kFallPhysicsSteps = 300;
 constexpr double kFallStartHeight = 1.0;
 constexpr double kUprightCos = 0.8;
+constexpr uint64_t kFallSeed = 0xFA11u;
+// Floor clips start lying: their bodies reach about this far from the root (m).
+constexpr double kLyingReach = 1.0;
+// Free floor kept around the outermost body of a floor start (m).
+constexpr double kFloorMargin = 0.3;
+
+// The fall states for `count`, generated once per process (every env of every skill instance
+// shares them read-only).
+std::shared_ptr<const std::vector<FallState>> CachedFallStates(int count) {
+  static std::mutex mutex;
+  static std::map<int, std::shared_ptr<const std::vector<FallState>>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[count];
+  if (!slot)
+    slot = std::make_shared<const std::vector<FallState>>(GenerateFallStates(count, kFallSeed));
+  return slot;
+}
 }  // namespace
 
-std::vector<sim::HumanoidPose> GenerateFallStates(int count, uint64_t seed) {
+std::vector<FallState> GenerateFallStates(int count, uint64_t seed) {
+  SIMS_CHECK(count >= 1);
   const sim::Humanoid h(sim::BuildModel());
   const mjModel* m = h.model();
-  sim::MjDataPtr data = sim::MakeData(m);
-  mjData* d = data.get();
-  std::vector<sim::HumanoidPose> out;
-  Rng rng(seed);
-  for (int attempt = 0; static_cast<int>(out.size()) < count && attempt < 4 * count; ++attempt) {
-    mj_resetData(m, d);
-    sim::HumanoidPose p;
-    p.root_pos = Eigen::Vector3d(0, 0, kFallStartHeight);
-    Eigen::Vector4d q(rng.Normal(), rng.Normal(), rng.Normal(), rng.Normal());
-    q.normalize();
-    p.root_rot = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-    sim::WritePose(h, p, d);
-    float action[sim::kNumDofs];
-    double targets[sim::kNumDofs];
-    for (float& a : action) a = static_cast<float>(rng.Uniform(-0.5, 0.5));
-    h.ActionToTargets(action, targets);
-    for (int j = 0; j < sim::kNumDofs; ++j) d->ctrl[h.actuator_id(j)] = targets[j];
-    for (int s = 0; s < kFallPhysicsSteps; ++s) mj_step(m, d);
-    sim::ReadPose(h, d, &p);
-    bool finite = p.root_pos.allFinite() && p.dof_pos.allFinite() && p.dof_vel.allFinite();
-    if (!finite) continue;
-    p.root_pos.x() = 0;
-    p.root_pos.y() = 0;
-    out.push_back(p);
+  std::vector<FallState> out(count);
+  std::vector<uint8_t> ok(count, 0);
+#pragma omp parallel num_threads(ThreadCount())
+  {
+    sim::MjDataPtr data = sim::MakeData(m);
+    mjData* d = data.get();
+    sim::BodyStates b;
+#pragma omp for schedule(dynamic)
+    for (int k = 0; k < count; ++k) {
+      Rng rng(seed + static_cast<uint64_t>(k));
+      for (int attempt = 0; attempt < 4 && !ok[k]; ++attempt) {
+        mj_resetData(m, d);
+        sim::HumanoidPose p;
+        p.root_pos = Eigen::Vector3d(0, 0, kFallStartHeight);
+        Eigen::Vector4d q(rng.Normal(), rng.Normal(), rng.Normal(), rng.Normal());
+        q.normalize();
+        p.root_rot = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+        sim::WritePose(h, p, d);
+        float action[sim::kNumDofs];
+        double targets[sim::kNumDofs];
+        for (float& a : action) a = static_cast<float>(rng.Uniform(-0.5, 0.5));
+        h.ActionToTargets(action, targets);
+        for (int j = 0; j < sim::kNumDofs; ++j) d->ctrl[h.actuator_id(j)] = targets[j];
+        for (int s = 0; s < kFallPhysicsSteps; ++s) mj_step(m, d);
+        sim::ReadPose(h, d, &p);
+        if (!(p.root_pos.allFinite() && p.dof_pos.allFinite() && p.dof_vel.allFinite())) continue;
+        sim::ReadBodyStates(h, d, &b);
+        FallState& f = out[k];
+        for (int j = 0; j < sim::kNumBodies; ++j)
+          f.reach = std::max(f.reach, (b.pos[j] - p.root_pos).head<2>().norm());
+        p.root_pos.x() = 0;
+        p.root_pos.y() = 0;
+        f.pose = p;
+        ok[k] = 1;
+      }
+    }
   }
-  SIMS_CHECK_MSG(!out.empty(), "fall-state generation diverged");
-  return out;
+  std::vector<FallState> kept;
+  for (int k = 0; k < count; ++k)
+    if (ok[k]) kept.push_back(out[k]);
+  SIMS_CHECK_MSG(!kept.empty(), "fall-state generation diverged");
+  return kept;
 }
 
-GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context, bool sit_first)
-    : ObjectSkill(config, context), sit_first_(sit_first) {
+void GetUpParams::Validate() const {
+  Require(fall_states >= 1, "getup_fall_states", "at least 1 fall state");
+  Require(fall_grace_steps >= 0, "getup_fall_grace_steps", "a step count ≥ 0");
+  Require(floor_clip_share >= 0 && floor_clip_share <= 1, "getup_floor_clip_share",
+          "a share in [0, 1]");
+  Require(standing_head_height > standing_pelvis_height && standing_pelvis_height > 0,
+          "getup_standing_head_height", "heights with 0 < pelvis < head (m)");
+}
+
+GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
+    : ObjectSkill(config, context) {
   const int n = context.num_envs;
-  phase_.assign(n, sit_first ? kSitPhase : kFeetPhase);
-  sit_hold_.assign(n, 0);
-  fall_start_.assign(n, 0);
+  phase_.assign(n, kFeetPhase);
+  start_.assign(n, kFallStart);
   stand_.assign(n, Eigen::Vector2d::Zero());
   reference_clips_.clear();
-  if (context.motions) reference_clips_ = context.motions->Find(sit_first ? "sit" : "getup");
-  if (!sit_first) {
-    // The states depend only on the fixed seed: generate them once per process.
-    static const std::vector<sim::HumanoidPose> states =
-        GenerateFallStates(kNumFallStates, 0xFA11u);
-    fall_states_ = states;
+  if (context.motions) {
+    // Clips without furniture parameters get up from the floor.
+    for (const int c : context.motions->Find("getup")) {
+      const auto& prm = context.motions->clip(c).meta().params;
+      (prm.count("furniture_height") ? furniture_clips_ : floor_clips_).push_back(c);
+      reference_clips_.push_back(c);
+    }
   }
+  fall_states_ = CachedFallStates(config.getup.fall_states);
   // The feet goal's height: foot origins of the standing default pose.
   sim::MjDataPtr scratch = sim::MakeData(context.humanoid->model());
   sim::BodyStates b;
   sim::ForwardKinematics(*context.humanoid, sim::HumanoidPose{}, scratch.get(), &b);
   foot_height_ = 0.5 * (b.pos[sim::kLeftFoot].z() + b.pos[sim::kRightFoot].z());
-  CollectObjects(sit_first ? "object with a 'seat surface' part"
-                           : "seat or bed (a 'seat surface' or 'mattress' part)");
+  CollectObjects("seat or bed (a 'seat surface' or 'mattress' part)");
 }
 
-bool GetUpSkill::Accepts(const ObjectGeometry& g) const {
-  return g.seat >= 0 || (!sit_first_ && g.mattress >= 0);
-}
+bool GetUpSkill::Accepts(const ObjectGeometry& g) const { return g.seat >= 0 || g.mattress >= 0; }
 
 uint32_t GetUpSkill::contact_body_mask() const {
-  if (sit_first_) return ObjectSkill::contact_body_mask();
   using namespace sim;
   return (1u << kLeftFoot) | (1u << kRightFoot) | (1u << kLeftHand) | (1u << kRightHand) |
          (1u << kPelvis) | (1u << kLeftThigh) | (1u << kRightThigh);
 }
 
-bool GetUpSkill::Standing(const sim::BodyStates& b) {
-  return b.pos[sim::kPelvis].z() >= kStandingPelvisHeight &&
-         (b.rot[sim::kPelvis] * Eigen::Vector3d::UnitZ()).z() >= kUprightCos;
+std::string GetUpSkill::start_label(int env_id) const {
+  switch (start_[env_id]) {
+    case kSeatStart:
+      return "seat";
+    case kBedStart:
+      return "bed";
+    case kFloorClipStart:
+      return "floor";
+    default:
+      return "fall";
+  }
+}
+
+bool GetUpSkill::Standing(const sim::BodyStates& b, const GetUpParams& params) {
+  return b.pos[sim::kPelvis].z() >= params.standing_pelvis_height &&
+         b.pos[sim::kHead].z() >= params.standing_head_height &&
+         (b.rot[sim::kPelvis] * Eigen::Vector3d::UnitZ()).z() >= kUprightCos &&
+         (b.rot[sim::kTorso] * Eigen::Vector3d::UnitZ()).z() >= kUprightCos;
+}
+
+bool GetUpSkill::StandingClear(const sim::EnvView& view) const {
+  if (!Standing(*view.bodies, config_.getup)) return false;
+  const mjData* d = view.data;
+  for (int c = 0; c < d->ncon; ++c) {
+    const int b1 = view.humanoid->geom_body(d->contact[c].geom1);
+    const int b2 = view.humanoid->geom_body(d->contact[c].geom2);
+    if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
+    const int b = b1 >= 0 ? b1 : b2;
+    if (b != sim::kLeftFoot && b != sim::kRightFoot) return false;
+    if (d->contact[c].pos[2] > kFloorContactHeight) return false;  // standing on furniture
+  }
+  return true;
 }
 
 double GetUpSkill::RiseReward(double z, double up_z, const Eigen::Vector2d& stand,
@@ -102,39 +174,51 @@ Eigen::Vector3d GetUpSkill::FootTarget(const Eigen::Vector2d& stand,
   return Eigen::Vector3d(stand.x() + q.x(), stand.y() + q.y(), foot_height_);
 }
 
+bool GetUpSkill::ClearFloorPoint(int i, double reach, Rng& rng, Eigen::Vector2d* p) const {
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    *p = SpawnPoint(i, geometry(i), rng);
+    if (FreeFloor(*p, reach + kFloorMargin)) return true;
+  }
+  return false;
+}
+
 bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
-  fall_start_[i] = 0;
+  const bool floor = !floor_clips_.empty() &&
+                     (furniture_clips_.empty() || rng.Bernoulli(config_.getup.floor_clip_share));
+  if (floor) {
+    const int clip = floor_clips_[rng.UniformInt(static_cast<int64_t>(floor_clips_.size()))];
+    const auto& c = context_.motions->clip(clip);
+    const double t = rng.Uniform(0.0, 0.25 * c.duration());  // still lying
+    Eigen::Vector2d p;
+    if (!ClearFloorPoint(i, kLyingReach, rng, &p)) return false;
+    const Eigen::Vector2d root = context_.motions->StateAt(clip, t).pose.root_pos.head<2>();
+    const ClipPlacement placement = ClipPlacement::Align(p, rng.Uniform(-M_PI, M_PI), root, 0.0);
+    PlaceReference(i, clip, t, placement, init);
+    start_[i] = kFloorClipStart;
+    return true;
+  }
   ClipPlacement placement;
   const double lateral = SeatLateral(geometry(i), rng);
-  const int clip = ChooseFurnitureClip(reference_clips_, geometry(i), lateral, rng, &placement);
+  const int clip = ChooseFurnitureClip(furniture_clips_, geometry(i), lateral, rng, &placement);
   if (clip < 0) return false;
-  const auto& c = context_.motions->clip(clip);
-  double t = 0;
-  if (sit_first_)
-    t = context_.motions->SampleTime(clip, rng, config_.reference_init_max_fraction);
-  else if (c.meta().skill == "getup")
-    t = rng.Uniform(0.0, 0.25 * c.duration());  // still seated / lying
-  else
-    t = rng.Uniform(0.75 * c.duration(), c.duration());  // sit/lie clips end seated / lying
+  const double t = rng.Uniform(0.0, 0.25 * context_.motions->clip(clip).duration());
   PlaceReference(i, clip, t, placement, init);
+  start_[i] = geometry(i).mattress >= 0 ? kBedStart : kSeatStart;
   return true;
 }
 
 void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
-  if (sit_first_) {
-    fall_start_[i] = 0;
-    ObjectSkill::DefaultInit(i, rng, init);
-    return;
-  }
-  fall_start_[i] = 1;
-  const int k = static_cast<int>(rng.UniformInt(static_cast<int64_t>(fall_states_.size())));
+  start_[i] = kFallStart;
+  const auto& states = *fall_states_;
+  const FallState& f = states[rng.UniformInt(static_cast<int64_t>(states.size()))];
   ClipPlacement placement;
-  placement.offset = SpawnPoint(i, geometry(i), rng);
+  // A crowded spot keeps the last draw: the episode is still valid, only harder.
+  ClearFloorPoint(i, f.reach, rng, &placement.offset);
   placement.yaw = rng.Uniform(-M_PI, M_PI);
-  init->pose = placement.Apply(fall_states_[k]);
+  init->pose = placement.Apply(f.pose);
   init->history.clear();
   init->reference = false;
-  init->termination_grace_steps = kFallGraceSteps;
+  init->termination_grace_steps = config_.getup.fall_grace_steps;
   const auto& clips = ReferenceClips();
   style_[i] = clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
 }
@@ -157,15 +241,15 @@ void GetUpSkill::SetGetUpGoals(int i, const sim::BodyStates& b, double* feet_sq,
 bool GetUpSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
   if (!ObjectSkill::BeginInstruction(view, target)) return false;
   const int i = view.env_id;
-  sit_hold_[i] = 0;
-  fall_start_[i] = target.object < 0;  // a fall: stand up where the character lies
+  start_[i] = target.object < 0 ? kFallStart : kSeatStart;  // no object: a fall
   StartGetUp(i, *view.bodies);
   if (target.has_point) {
     stand_[i] = target.point.head<2>();
     double sq = 0, mx = 0;
     SetGetUpGoals(i, *view.bodies, &sq, &mx);
   }
-  error_[i] = std::max(kStandingPelvisHeight - view.bodies->pos[sim::kPelvis].z(), 0.0);
+  error_[i] =
+      std::max(config_.getup.standing_pelvis_height - view.bodies->pos[sim::kPelvis].z(), 0.0);
   return true;
 }
 
@@ -173,7 +257,7 @@ void GetUpSkill::StartGetUp(int i, const sim::BodyStates& b) {
   const Eigen::Vector2d pelvis = b.pos[sim::kPelvis].head<2>();
   stand_[i] = pelvis;
   const ObjectGeometry& g = geometry(i);
-  if (!fall_start_[i] && !g.stand_points.empty()) {
+  if (!floor_start(i) && !g.stand_points.empty()) {
     double best = std::numeric_limits<double>::infinity();
     for (const auto& s : g.stand_points)
       if ((s.head<2>() - pelvis).squaredNorm() < best)
@@ -187,19 +271,9 @@ void GetUpSkill::StartGetUp(int i, const sim::BodyStates& b) {
 
 void GetUpSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
-  sit_hold_[i] = 0;
-  if (sit_first_) {
-    phase_[i] = kSitPhase;
-    const ObjectGeometry& g = geometry(i);
-    ClearGoals(i);
-    const Eigen::Vector3d x = sim::ContactJointPosition(*view.bodies, sim::kCjPelvis);
-    const Eigen::Vector3d seat = NearestOnPart(*context_.scene, g.object, g.seat, x);
-    SetGoal(i, sim::kCjPelvis, seat);
-    error_[i] = (seat - x).norm();
-    return;
-  }
   StartGetUp(i, *view.bodies);
-  error_[i] = std::max(kStandingPelvisHeight - view.bodies->pos[sim::kPelvis].z(), 0.0);
+  error_[i] =
+      std::max(config_.getup.standing_pelvis_height - view.bodies->pos[sim::kPelvis].z(), 0.0);
 }
 
 sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
@@ -208,20 +282,6 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
   const Eigen::Vector2d vel = view.pose->root_lin_vel.head<2>();
   const Eigen::Vector2d facing = FacingOf(*view.pose);
-  if (phase_[i] == kSitPhase) {
-    const ObjectGeometry& g = geometry(i);
-    const Eigen::Vector3d x = sim::ContactJointPosition(b, sim::kCjPelvis);
-    const Eigen::Vector3d seat = NearestOnPart(*context_.scene, g.object, g.seat, x);
-    ClearGoals(i);
-    SetGoal(i, sim::kCjPelvis, seat);
-    const double d = (seat - x).norm();
-    error_[i] = d;
-    const Eigen::Vector2d anchor = g.ToWorld(g.seat_local.center()).head<2>();
-    const double r = ContactReward(anchor, root, vel, facing, config_.target_speed, d * d);
-    sit_hold_[i] = d < config_.object.contact_success_threshold ? sit_hold_[i] + 1 : 0;
-    if (sit_hold_[i] >= config_.success_hold_steps) StartGetUp(i, b);
-    return Finish(view, r, false);
-  }
   double sq = 0, mx = 0;
   SetGetUpGoals(i, b, &sq, &mx);
   double r = 0;
@@ -236,19 +296,18 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
     r = 0.5 +
         0.5 * RiseReward(b.pos[sim::kPelvis].z(), up_z, stand_[i], b.pos[sim::kPelvis].head<2>());
   }
-  error_[i] = std::max(kStandingPelvisHeight - b.pos[sim::kPelvis].z(), 0.0);
-  return Finish(view, r, Standing(b));
+  error_[i] = std::max(config_.getup.standing_pelvis_height - b.pos[sim::kPelvis].z(), 0.0);
+  return Finish(view, r, StandingClear(view));
 }
 
 void GetUpSkill::SaveTaskState(int i, std::vector<double>* out) const {
-  out->insert(out->end(), {static_cast<double>(phase_[i]), static_cast<double>(sit_hold_[i]),
-                           static_cast<double>(fall_start_[i]), stand_[i].x(), stand_[i].y()});
+  out->insert(out->end(), {static_cast<double>(phase_[i]), static_cast<double>(start_[i]),
+                           stand_[i].x(), stand_[i].y()});
 }
 
 void GetUpSkill::LoadTaskState(int i, StateReader* r) {
-  phase_[i] = static_cast<int>(r->Int("phase", kSitPhase, kRisePhase));
-  sit_hold_[i] = static_cast<int>(r->Int("sit_hold", 0, std::numeric_limits<int>::max()));
-  fall_start_[i] = r->Flag("fall_start");
+  phase_[i] = static_cast<int>(r->Int("phase", kFeetPhase, kRisePhase));
+  start_[i] = static_cast<int>(r->Int("start", kSeatStart, kFallStart));
   stand_[i].x() = r->Real("stand");
   stand_[i].y() = r->Real("stand");
 }
@@ -256,25 +315,14 @@ void GetUpSkill::LoadTaskState(int i, StateReader* r) {
 SkillInfo GetUpSkillInfo() {
   SkillInfo info = BuiltinSkillInfo("getup");
   info.params = ConfigToJson(ObjectParams{});
+  info.params.update(ConfigToJson(GetUpParams{}));
   info.build_scene = [](const SkillConfig& c, Rng& rng) {
     std::vector<std::string> cats = SeatCategories();
     cats.push_back("bed");
     return BuildTrainingGround(c, rng, cats);
   };
   info.create = [](const SkillConfig& c, const SkillContext& ctx) -> std::shared_ptr<Skill> {
-    return std::make_shared<GetUpSkill>(c, ctx, false);
-  };
-  return info;
-}
-
-SkillInfo SitGetUpSkillInfo() {
-  SkillInfo info = BuiltinSkillInfo("sit_getup");
-  info.params = ConfigToJson(ObjectParams{});
-  info.build_scene = [](const SkillConfig& c, Rng& rng) {
-    return BuildTrainingGround(c, rng, SeatCategories());
-  };
-  info.create = [](const SkillConfig& c, const SkillContext& ctx) -> std::shared_ptr<Skill> {
-    return std::make_shared<GetUpSkill>(c, ctx, true);
+    return std::make_shared<GetUpSkill>(c, ctx);
   };
   return info;
 }

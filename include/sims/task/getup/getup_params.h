@@ -1,0 +1,36 @@
+// Get-up's own settings (part of task::SkillConfig, bound flat like walk_params.h).
+#pragma once
+
+#include "sims/core/config.h"
+
+namespace sims::task {
+
+/// Get-up options (see getup.h).
+struct GetUpParams {
+  /// Precomputed fall states (ASE: random root orientation and random actions, then the fall);
+  /// generated once per process for each count, deterministically.
+  int fall_states = 1000;
+  /// Falls do not terminate during this many control steps after a fall-state start (ASE 60).
+  int fall_grace_steps = 60;
+  /// Share of reference starts taken from floor get-up clips (lying on the floor) when the
+  /// library has any; the rest start seated or lying on the env's furniture.
+  double floor_clip_share = 0.3;
+  /// Standing: the head at least this high (m; standing head origin ≈ 1.35 m) ...
+  double standing_head_height = 1.2;
+  /// ... and the pelvis at least this high (m; standing ≈ 0.89 m).
+  double standing_pelvis_height = 0.8;
+
+  /// Lists the fields for JSON binding (keys as in the skill config).
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(MakeNameValue("getup_fall_states", &fall_states));
+    a->Visit(MakeNameValue("getup_fall_grace_steps", &fall_grace_steps));
+    a->Visit(MakeNameValue("getup_floor_clip_share", &floor_clip_share));
+    a->Visit(MakeNameValue("getup_standing_head_height", &standing_head_height));
+    a->Visit(MakeNameValue("getup_standing_pelvis_height", &standing_pelvis_height));
+  }
+  /// Checks ranges.
+  void Validate() const;
+};
+
+}  // namespace sims::task
