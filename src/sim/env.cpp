@@ -44,6 +44,9 @@ void EnvConfig::Validate() const {
   Require(max_velocity > 0, "max_velocity", "a positive number");
   Require(amp_history >= 1, "amp_history", "at least 1 step");
   Require(threads >= 0, "threads", "0 (all hardware threads) or a positive count");
+  Require(recovery_episode_prob >= 0 && recovery_episode_prob <= 1, "recovery_episode_prob",
+          "a probability in [0, 1]");
+  Require(recovery_steps >= 1, "recovery_steps", "at least 1 step");
 }
 
 namespace {
@@ -98,6 +101,7 @@ BatchedEnv::BatchedEnv(std::shared_ptr<const Humanoid> humanoid, const EnvConfig
   completions_.assign(n, 0);
   episode_reference_.assign(n, 0);
   end_reason_.assign(n, kNone);
+  recovered_.assign(n, 0);
   slots_.resize(n);
   for (int i = 0; i < n; ++i) {
     slots_[i] = std::make_unique<Slot>();
@@ -266,6 +270,7 @@ void BatchedEnv::StepEnv(int i, const float* action) {
 
   EndReason reason = kNone;
   TaskStepResult tr;
+  recovered_[i] = 0;
   if (Unstable(i)) {
     reason = kUnstable;
   } else {
@@ -273,14 +278,24 @@ void BatchedEnv::StepEnv(int i, const float* action) {
     ReadBodyStates(*humanoid_, d, &s.bodies);
     if (task_) tr = task_->Step(View(i));
     if (s.grace > 0) --s.grace;
-    if (config_.early_termination && s.grace == 0 && s.progress > 1 && Fallen(i))
+    bool fell = config_.early_termination && s.grace == 0 && s.progress > 1 && Fallen(i);
+    // A recovery episode goes on instead; the draw only happens when they are on, so every
+    // other random stream stays as it was.
+    if (fell && config_.recovery_episode_prob > 0 &&
+        s.rng.Bernoulli(config_.recovery_episode_prob)) {
+      s.grace = config_.recovery_steps;
+      recovered_[i] = 1;
+      fell = false;
+    }
+    if (fell) {
       reason = kFall;
-    else if (tr.terminate)
+    } else if (tr.terminate) {
       reason = kTaskTerminate;
-    else if (tr.truncate)
+    } else if (tr.truncate) {
       reason = kTaskTruncate;
-    else if (s.progress >= config_.episode_length - 1)
+    } else if (s.progress >= config_.episode_length - 1) {
       reason = kTimeout;
+    }
   }
 
   rewards_[i] = reason == kUnstable ? 0.0f : tr.reward;
@@ -316,6 +331,7 @@ void BatchedEnv::Step(const float* actions) {
   for (int i = 0; i < n; ++i) StepEnv(i, actions + static_cast<size_t>(i) * kNumDofs);
   stats_.steps += n;
   for (int i = 0; i < n; ++i) {
+    stats_.recoveries += recovered_[i];
     switch (end_reason_[i]) {
       case kFall:
         ++stats_.falls;

@@ -153,6 +153,49 @@ TEST(EnvTest, StandingPdHoldsAndFallResets) {
   EXPECT_GT(env.pose(0).root_pos.z(), 0.8);
 }
 
+// ASE recovery episodes: with probability 1 a fall does not end the episode; the env goes
+// on lying there with falls ignored for recovery_steps, then falls (and recovers) again. The
+// draws come from the env's own stream, so the same seed gives the same episodes.
+TEST(EnvTest, RecoveryEpisodesKeepAFallenEnvGoing) {
+  HumanoidPose lying;
+  lying.root_pos = {0, 0, 0.12};
+  lying.root_rot = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
+  const double targets[kNumDofs] = {0};
+  auto run = [&](double p, std::vector<int>* done_steps, std::vector<int>* recover_steps) {
+    EnvConfig c = SmallConfig(1, 1);
+    c.recovery_episode_prob = p;
+    c.recovery_steps = 10;
+    BatchedEnv env(MakeHumanoid(), c);
+    env.SetState(0, lying);
+    std::vector<float> act(kNumDofs);
+    env.humanoid().TargetsToAction(targets, act.data());
+    int64_t recoveries = 0;
+    for (int t = 0; t < 40; ++t) {
+      env.Step(act.data());
+      if (env.dones()[0]) {
+        done_steps->push_back(t);
+        env.SetState(0, lying);
+      }
+      if (env.stats().recoveries > recoveries) recover_steps->push_back(t);
+      recoveries = env.stats().recoveries;
+    }
+    return env.stats();
+  };
+  std::vector<int> done_off, rec_off, done_on, rec_on;
+  const EnvStats off = run(0.0, &done_off, &rec_off);
+  EXPECT_GT(off.falls, 0);
+  EXPECT_EQ(off.recoveries, 0);
+  const EnvStats on = run(1.0, &done_on, &rec_on);
+  EXPECT_EQ(on.falls, 0);
+  EXPECT_TRUE(done_on.empty());
+  ASSERT_GE(rec_on.size(), 2u);
+  EXPECT_EQ(rec_on[0], done_off[0]) << "the first fall is where it would have ended";
+  for (size_t k = 1; k < rec_on.size(); ++k) EXPECT_EQ(rec_on[k] - rec_on[k - 1], 10);
+  EnvConfig bad = SmallConfig(1, 1);
+  bad.recovery_episode_prob = 1.5;
+  EXPECT_THROW(BatchedEnv(MakeHumanoid(), bad), Error);
+}
+
 TEST(EnvTest, TimeoutTruncatesWithoutTermination) {
   EnvConfig c = SmallConfig(1, 1);
   c.episode_length = 5;

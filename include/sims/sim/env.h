@@ -32,6 +32,11 @@ struct EnvConfig {
   bool local_root_obs = true;            ///< Heading-local root rotation (InterScene).
   int threads = 0;                       ///< OpenMP threads for the env loop (0 = ThreadCount()).
   uint64_t seed = 0;                     ///< Env i draws from Rng(seed + i).
+  /// ASE recovery episodes: a fall ends the episode only with probability 1 − p; otherwise the
+  /// env goes on with falls ignored for recovery_steps (the policy practises getting up from
+  /// the fall it just had). 0 = off.
+  double recovery_episode_prob = 0.0;
+  int recovery_steps = 60;  ///< Grace of a recovery episode (control steps; ASE 60).
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -50,6 +55,8 @@ struct EnvConfig {
     a->Visit(SIMS_NVP(local_root_obs));
     a->Visit(SIMS_NVP(threads));
     a->Visit(SIMS_NVP(seed));
+    a->Visit(SIMS_NVP(recovery_episode_prob));
+    a->Visit(SIMS_NVP(recovery_steps));
   }
   /// Throws FieldError on out-of-range values.
   void Validate() const;
@@ -63,6 +70,7 @@ struct EnvStats {
   int64_t timeouts = 0;       ///< Episode-length truncations.
   int64_t task_ends = 0;      ///< Task terminations/truncations.
   int64_t instabilities = 0;  ///< NaN / blow-up resets.
+  int64_t recoveries = 0;     ///< Falls turned into recovery episodes (not counted as falls).
 };
 
 /// Why an env's episode ended at a step (kNone: it goes on).
@@ -176,6 +184,7 @@ class BatchedEnv {
   std::vector<uint8_t> dones_, terminated_, successes_, completions_, episode_reference_;
   // Per-env end reasons from the parallel loop, summed serially afterwards.
   std::vector<EndReason> end_reason_;
+  std::vector<uint8_t> recovered_;  // 1: this step's fall became a recovery episode
   EnvStats stats_;
 };
 
