@@ -35,11 +35,13 @@ SkeletonPose PoseOf(const BodyKey& key) {
 
 std::string Suffix(int variant) { return variant == 0 ? "" : "_v" + std::to_string(variant); }
 
-// Solves keys above the floor and `furniture` and labels the clip with the furniture.
+// Solves keys above the floor and `furniture` and labels the clip with the furniture; with
+// `rest_on_floor` (no furniture) every frame rests on the floor (see SolveKeys).
 MotionClip Build(const std::vector<BodyKey>& keys, const IdleNoise& noise, MotionMeta meta,
-                 double fps, const std::vector<FurnitureSpec>& furniture) {
+                 double fps, const std::vector<FurnitureSpec>& furniture,
+                 bool rest_on_floor = false) {
   SolveStats stats;
-  std::vector<MotionFrame> frames = SolveKeys(keys, fps, noise, &furniture, &stats);
+  std::vector<MotionFrame> frames = SolveKeys(keys, fps, noise, &furniture, &stats, rest_on_floor);
   spdlog::debug("synthetic {}: leg IK miss {:.4f} m, arm IK miss {:.4f} m, lift {:.4f} m",
                 meta.name, stats.leg_error, stats.arm_error, stats.max_lift);
   for (std::size_t i = 0; i < furniture.size(); ++i) {
@@ -298,6 +300,250 @@ std::vector<BodyKey> LieDownKeys(const FurnitureSpec& bed) {
 }
 
 // ---------------------------------------------------------------------------------------
+// On the floor. A get-up from the floor ends standing at the origin facing +x (as the seat
+// get-ups do) after kneeling with the knees at x = kKneelX and the left foot stepped forward
+// to x = 0; the lying poses are placed so that the way up passes there.
+
+constexpr double kKneelX = -0.40;     // knees when kneeling (m)
+constexpr double kKneelWidth = 0.1;   // knees and feet either side of the midline (m)
+constexpr double kToeTuckDeg = 70;    // foot pitch (toe down) with the toes tucked under
+constexpr double kTuckBack = 0.40;    // toe edge behind the knee when kneeling (m)
+constexpr double kHandsAhead = 0.55;  // hands ahead of the knees on hands and knees (m)
+constexpr double kHandWidth = 0.17;   // hands either side of the midline (m)
+constexpr double kSupineY = -0.30;    // pelvis y lying on the back (rolls over toward +y)
+constexpr uint32_t kHands = (1u << sim::kRightHand) | (1u << sim::kLeftHand);
+constexpr uint32_t kFeet = (1u << sim::kRightFoot) | (1u << sim::kLeftFoot);
+
+// Sets a key's pelvis orientation from world axes of its front (+x) and up (+z).
+void Orient(BodyKey* k, const Eigen::Vector3d& front, const Eigen::Vector3d& up) {
+  Eigen::Matrix3d R;
+  R.col(0) = front.normalized();
+  R.col(2) = up.normalized();
+  R.col(1) = R.col(2).cross(R.col(0));
+  const Eigen::Vector3d ypr = R.eulerAngles(2, 1, 0);
+  k->yaw = ypr[0], k->pitch = ypr[1], k->roll = ypr[2];
+}
+
+// Moves the pelvis up or down until the key's lowest geom touches the floor, leaving out the
+// `skip` bodies (planted hands and feet: their IK targets hold them where they are).
+void RestOnFloor(BodyKey* k, uint32_t skip = 0) {
+  const auto h = HumanoidSkeleton::DefaultHumanoid();
+  sim::MjDataPtr d = sim::MakeData(h->model());
+  BodyKey one = *k;
+  one.t = 0;
+  for (int iter = 0; iter < 40; ++iter) {
+    one.pelvis = k->pelvis;
+    const double z = LowestPoint(*h, d.get(), SolveKeys({one}, 30.0)[0], skip);
+    if (std::abs(z) < 1e-5) break;
+    k->pelvis.z() -= z;
+  }
+}
+
+// A foot with the toes tucked under (sole facing back, toe edge on the floor at x, y).
+LimbKey TuckedFoot(double x, double y, const Eigen::Vector3d& knee_hint) {
+  LimbKey l;
+  l.weight = 1;
+  l.pitch = Deg(kToeTuckDeg);
+  l.target = Eigen::Vector3d(x, y, 0) - FootRotation(0, l.pitch) * FootOf(Skel()).toe;
+  l.hint = knee_hint;
+  return l;
+}
+
+// A hand flat on the floor at (x, y), elbow toward `hint`.
+LimbKey HandOnFloor(double x, double y, const Eigen::Vector3d& hint) {
+  LimbKey l;
+  l.weight = 1;
+  l.target = Eigen::Vector3d(x, y, 0.04);  // hand sphere radius
+  l.hint = hint;
+  return l;
+}
+
+// Turns a key's legs from joint angles into IK at their own ankle poses, the knees pointing
+// where they do (so the feet can be planted or steered from there).
+void LegsToIkInPlace(BodyKey* k) {
+  const SkeletonPose sp = PoseOf(*k);
+  LegsToIk(k, Eigen::Vector3d::UnitZ());
+  k->limbs[2].hint = sp.rot[sim::kRightThigh] * Eigen::Vector3d::UnitX();
+  k->limbs[3].hint = sp.rot[sim::kLeftThigh] * Eigen::Vector3d::UnitX();
+}
+
+// A key between two keys (w = 0: a, 1: b): pelvis orientation by slerp, the rest (position,
+// joint angles, limbs) blended linearly; time and flags from a.
+BodyKey Mix(const BodyKey& a, const BodyKey& b, double w) {
+  BodyKey k = a;
+  k.pelvis = (1 - w) * a.pelvis + w * b.pelvis;
+  const Eigen::Quaterniond q =
+      YawPitchRoll(a.yaw, a.pitch, a.roll).slerp(w, YawPitchRoll(b.yaw, b.pitch, b.roll));
+  Orient(&k, q * Eigen::Vector3d::UnitX(), q * Eigen::Vector3d::UnitZ());
+  k.dofs = (1 - w) * a.dofs + w * b.dofs;
+  for (int l = 0; l < 4; ++l) {
+    LimbKey& m = k.limbs[l];
+    const LimbKey &x = a.limbs[l], &y = b.limbs[l];
+    m.weight = (1 - w) * x.weight + w * y.weight;
+    m.target = (1 - w) * x.target + w * y.target;
+    m.yaw = (1 - w) * x.yaw + w * y.yaw;
+    m.pitch = (1 - w) * x.pitch + w * y.pitch;
+    m.hint = (1 - w) * x.hint + w * y.hint;
+  }
+  return k;
+}
+
+// A point for a hand resting on top of a thigh or shin (`body`), `along` the way to the
+// next joint: the hand sphere touches the capsule from above.
+Eigen::Vector3d OnTopOf(const SkeletonPose& sp, int body, double along) {
+  const Eigen::Vector3d a = sp.pos[body], b = sp.pos[body + 1];
+  const Eigen::Vector3d axis = (b - a).normalized();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ() - axis.z() * axis;
+  up = up.norm() > 1e-6 ? up.normalized() : Eigen::Vector3d::UnitX();
+  return a + along * (b - a) + 0.1 * up;  // capsule 0.055 + hand 0.04, a little clearance
+}
+
+// Both hands on top of the left thigh (right hand nearer the hip), elbows out.
+void HandsOnLeftThigh(BodyKey* k, const SkeletonPose& sp, double right, double left) {
+  HandsTo(k, OnTopOf(sp, sim::kLeftThigh, right) + Eigen::Vector3d(0, -0.03, 0),
+          OnTopOf(sp, sim::kLeftThigh, left) + Eigen::Vector3d(0, 0.02, 0));
+  k->limbs[0].hint = Eigen::Vector3d(-0.4, -1, 0.3);
+  k->limbs[1].hint = Eigen::Vector3d(-0.4, 1, 0.3);
+}
+
+// Turns a key's legs from IK into the joint angles of its solved pose (IK weight 0).
+void LegsToJoints(BodyKey* k) {
+  BodyKey one = *k;
+  one.t = 0;
+  const MotionFrame f = SolveKeys({one}, 30.0)[0];
+  k->dofs.segment<14>(kRHipX) = f.dof_pos.segment<14>(kRHipX);
+  k->limbs[2].weight = k->limbs[3].weight = 0;
+}
+
+// Relaxed hanging arms (as standing).
+void ArmsHanging(BodyKey* k) {
+  const BodyKey stand = StandingKey(0.0);
+  for (int i : {kRShX, kRShY, kRShZ, kRElbow, kLShX, kLShY, kLShZ, kLElbow})
+    k->dofs[i] = stand.dofs[i];
+  k->limbs[0].weight = k->limbs[1].weight = 0;
+}
+
+// Makes both descriptions of every limb agree with the key's solved pose: limbs it moves by
+// joint angles (IK weight 0) get IK targets where they are, limbs it places by IK get the
+// joint angles IK gives them. Blending between a joint-angle key and an IK key then starts
+// and ends at the same pose.
+void TargetsInPlace(BodyKey* k) {
+  BodyKey one = *k;
+  one.t = 0;
+  const MotionFrame f = SolveKeys({one}, 30.0)[0];
+  SkeletonPose sp;
+  SkeletonForwardKinematics(Skel(), f.root_pos, f.root_rot, f.dof_pos, &sp);
+  for (int l = 0; l < 4; ++l) {
+    if (k->limbs[l].weight <= 0) continue;
+    const int first = l == 0 ? kRShX : l == 1 ? kLShX : l == 2 ? kRHipX : kLHipX;
+    const int count = l < 2 ? 4 : 7;
+    k->dofs.segment(first, count) = f.dof_pos.segment(first, count);
+  }
+  for (int arm = 0; arm < 2; ++arm) {
+    LimbKey& l = k->limbs[arm];
+    if (l.weight > 0) continue;
+    l.target = sp.pos[arm == 0 ? sim::kRightHand : sim::kLeftHand];
+    l.hint = Eigen::Vector3d(-1, arm == 0 ? -0.3 : 0.3, 0);
+  }
+  for (int leg = 0; leg < 2; ++leg) {
+    LimbKey& l = k->limbs[2 + leg];
+    if (l.weight > 0) continue;
+    const int foot = leg == 0 ? sim::kRightFoot : sim::kLeftFoot;
+    l.target = sp.pos[foot];
+    const Eigen::Vector3d fwd = sp.rot[foot] * Eigen::Vector3d::UnitX();
+    l.yaw = std::atan2(fwd.y(), fwd.x());
+    l.pitch = std::atan2(-fwd.z(), fwd.head<2>().norm());
+    l.hint = sp.rot[foot - 2] * Eigen::Vector3d::UnitX();
+  }
+}
+
+// Whole-body floor poses (the key's time and hold are kept).
+BodyKey FloorBase(const BodyKey& k) {
+  BodyKey b;
+  b.t = k.t;
+  b.hold = k.hold;
+  b.slerp = true;
+  b.monotone = true;
+  return b;
+}
+
+// Lying on the back, head toward +x, arms by the sides, legs long; the feet by leg IK.
+void FloorSupine(BodyKey& k) {
+  k = FloorBase(k);
+  k.yaw = M_PI, k.pitch = -Deg(90);  // front up, head toward +x
+  k.pelvis = Eigen::Vector3d(kKneelX, kSupineY, 0.1);
+  k.dofs[kRShX] = -Deg(10), k.dofs[kLShX] = Deg(10);
+  k.dofs[kRElbow] = k.dofs[kLElbow] = -Deg(15);
+  k.dofs[kRKnee] = k.dofs[kLKnee] = Deg(5);
+  k.dofs[kRAnkY] = k.dofs[kLAnkY] = Deg(20);
+  k.dofs[kNeckY] = -Deg(8);
+  RestOnFloor(&k);
+  LegsToIkInPlace(&k);
+  TargetsInPlace(&k);
+}
+
+// Lying face down, head toward +x, hands on the floor beside the chest, toes tucked under.
+void FloorProne(BodyKey& k) {
+  k = FloorBase(k);
+  k.pitch = Deg(90);  // front down, head toward +x
+  k.pelvis = Eigen::Vector3d(kKneelX + 0.40, 0, 0.1);
+  k.dofs[kNeckY] = -Deg(25);
+  for (int side = 0; side < 2; ++side) {
+    const double s = side == 0 ? -1 : 1;
+    k.limbs[side] = HandOnFloor(k.pelvis.x() + 0.30, s * 0.24, Eigen::Vector3d(-1, s * 0.6, 1));
+    k.limbs[2 + side] = TuckedFoot(kKneelX - kTuckBack, s * kKneelWidth, -Eigen::Vector3d::UnitZ());
+  }
+  RestOnFloor(&k, kHands | kFeet);
+  TargetsInPlace(&k);
+}
+
+// On hands and knees, facing +x, toes tucked under.
+void HandsAndKnees(BodyKey& k) {
+  k = FloorBase(k);
+  k.pitch = Deg(80);
+  k.pelvis = Eigen::Vector3d(kKneelX + 0.04, 0, 0.5);
+  k.dofs[kNeckY] = -Deg(35);
+  for (int side = 0; side < 2; ++side) {
+    const double s = side == 0 ? -1 : 1;
+    k.limbs[side] = HandOnFloor(kKneelX + kHandsAhead, s * kHandWidth, Eigen::Vector3d(-1, 0, 0));
+    k.limbs[2 + side] =
+        TuckedFoot(kKneelX - kTuckBack, s * kKneelWidth, Eigen::Vector3d(1, 0, -0.3));
+  }
+  RestOnFloor(&k, kHands | kFeet);
+  TargetsInPlace(&k);
+}
+
+// Kneeling upright on both knees, toes tucked under, arms hanging.
+void Kneeling(BodyKey& k) {
+  k = FloorBase(k);
+  k.pitch = Deg(4);
+  k.pelvis = Eigen::Vector3d(kKneelX + 0.02, 0, 0.5);
+  ArmsHanging(&k);
+  for (int side = 0; side < 2; ++side) {
+    const double s = side == 0 ? -1 : 1;
+    k.limbs[2 + side] =
+        TuckedFoot(kKneelX - kTuckBack, s * kKneelWidth, Eigen::Vector3d(1, 0, -0.3));
+  }
+  RestOnFloor(&k, kFeet);
+  TargetsInPlace(&k);
+}
+
+// On the right knee, left foot forward flat where it will stand, hands on the left knee.
+void OneKnee(BodyKey& k) {
+  k = FloorBase(k);
+  k.pitch = Deg(10);
+  k.pelvis = Eigen::Vector3d(kKneelX + 0.03, -0.02, 0.5);
+  k.dofs[kAbdY] = Deg(6);
+  k.limbs[2] = TuckedFoot(kKneelX - kTuckBack, -kKneelWidth, Eigen::Vector3d(1, 0, -0.3));
+  k.limbs[3] = StandingKey(0.0).limbs[3];
+  k.limbs[3].hint = Eigen::Vector3d(1, 0.1, 0.3);
+  RestOnFloor(&k, kFeet);
+  const SkeletonPose sp = PoseOf(k);
+  HandsOnLeftThigh(&k, sp, 0.65, 0.85);
+  TargetsInPlace(&k);
+}
+
+// ---------------------------------------------------------------------------------------
 // Named poses: edits that depend on the body's own geometry (forward kinematics of the edited
 // key) or on the bed, which a list of numbers in the catalogue cannot express.
 
@@ -364,6 +610,11 @@ const std::map<std::string, PoseFn>& NamedPoses() {
            l.hint = Eigen::Vector3d(0, 0, 1);
          }
        }},
+      {"floor_supine", [](BodyKey& k, const FurnitureSpec&) { FloorSupine(k); }},
+      {"floor_prone", [](BodyKey& k, const FurnitureSpec&) { FloorProne(k); }},
+      {"hands_and_knees", [](BodyKey& k, const FurnitureSpec&) { HandsAndKnees(k); }},
+      {"kneeling", [](BodyKey& k, const FurnitureSpec&) { Kneeling(k); }},
+      {"one_knee", [](BodyKey& k, const FurnitureSpec&) { OneKnee(k); }},
   };
   return poses;
 }
@@ -417,6 +668,159 @@ MotionMeta Meta(const SyntheticLabels& l, const std::string& skill, int variant,
                 const std::vector<std::string>& default_furniture) {
   return SyntheticMeta(l.name + Suffix(variant), skill, l.emotion, l.style, l.captions,
                        l.furniture.empty() ? default_furniture : l.furniture);
+}
+
+// Keys of a get-up from the floor (see FloorGetUpRecipe): lying still for kFloorRest s, the
+// way up with its times scaled by `tempo`, then standing still for the recipe's hold.
+constexpr double kFloorRest = 0.3;
+
+BodyKey FloorPose(void (*pose)(BodyKey&), double t, bool hold = false) {
+  BodyKey k;
+  k.t = t;
+  k.hold = hold;
+  pose(k);
+  return k;
+}
+
+void Slump(BodyKey* k, double deg) {
+  k->dofs[kAbdY] += Deg(deg);
+  k->dofs[kNeckY] += Deg(deg);
+}
+
+std::vector<BodyKey> FloorGetUpKeys(const FloorGetUpRecipe& r, double tempo) {
+  std::vector<BodyKey> keys;
+  double t = kFloorRest;
+  auto after = [&](double dt) { return t += dt * tempo; };
+  const bool prone = r.start == "prone";
+  const BodyKey lie = FloorPose(prone ? FloorProne : FloorSupine, 0.0, true);
+  keys.push_back(lie);
+  keys.push_back(At(lie, t, true));
+  if (prone) {
+    // Push up onto straight arms with the knees down, the body in a line from the knees.
+    BodyKey push = lie;
+    push.t = after(0.8);
+    push.hold = false;
+    const double line = Deg(35);  // above the floor
+    push.pitch = Deg(90) - line;
+    push.pelvis = Eigen::Vector3d(kKneelX + Skel().thigh_length() * std::cos(line), 0, 0.3);
+    push.dofs[kNeckY] = -Deg(30);
+    for (int side = 0; side < 2; ++side) {
+      push.limbs[side].hint = Eigen::Vector3d(-1, 0, 0);
+      push.limbs[2 + side].hint = Eigen::Vector3d(std::sin(line), 0, -std::cos(line));
+    }
+    RestOnFloor(&push, kHands | kFeet);
+    keys.push_back(push);
+  } else {
+    // Draw the knees up to the chest, the heels leaving the floor straight up, and start to
+    // roll toward the right side.
+    BodyKey heels = lie;
+    heels.hold = false;
+    heels.t = after(0.2);
+    heels.dofs[kNeckY] = Deg(10);
+    for (int leg = 0; leg < 2; ++leg) heels.limbs[2 + leg].target += Eigen::Vector3d(0.03, 0, 0.06);
+    keys.push_back(heels);
+    const Eigen::Quaterniond q_lie = YawPitchRoll(lie.yaw, lie.pitch, lie.roll);
+    auto roll = [&](BodyKey* k, double deg) {  // about the long axis, front turning to +y
+      const Eigen::Quaterniond q = Eigen::AngleAxisd(-Deg(deg), Eigen::Vector3d::UnitX()) * q_lie;
+      Orient(k, q * Eigen::Vector3d::UnitX(), q * Eigen::Vector3d::UnitZ());
+    };
+    BodyKey tuck = heels;
+    tuck.t = after(0.35);
+    roll(&tuck, 20);
+    tuck.dofs[kNeckY] = Deg(25), tuck.dofs[kAbdY] = Deg(15);
+    // Arms forward, the left one starting to reach over.
+    tuck.dofs[kRShY] = -Deg(30), tuck.dofs[kRShX] = -Deg(30), tuck.dofs[kRElbow] = -Deg(60);
+    tuck.dofs[kLShY] = -Deg(70), tuck.dofs[kLElbow] = -Deg(30);
+    for (int leg = 0; leg < 2; ++leg) {
+      LimbKey& l = tuck.limbs[2 + leg];
+      l.target = Eigen::Vector3d(kKneelX - 0.3, lie.limbs[2 + leg].target.y() + 0.05, 0.3);
+      l.pitch = -Deg(30);
+      l.hint = Eigen::Vector3d(0, 0.3, 1);
+    }
+    RestOnFloor(&tuck);
+    keys.push_back(tuck);
+    // On the right side, knees in front, feet off the floor, the left hand reaching over to
+    // the floor ahead of the chest.
+    BodyKey side = FloorBase(tuck);
+    side.t = after(0.45);
+    roll(&side, 90);
+    side.pelvis = Eigen::Vector3d(kKneelX, kSupineY + 0.12, 0.15);
+    side.dofs[kRHipY] = side.dofs[kLHipY] = -Deg(80);
+    side.dofs[kRKnee] = side.dofs[kLKnee] = Deg(100);
+    side.dofs[kRHipZ] = -Deg(8), side.dofs[kLHipX] = Deg(10);
+    side.dofs[kRAnkY] = side.dofs[kLAnkY] = Deg(20);
+    side.dofs[kAbdY] = Deg(10), side.dofs[kNeckY] = Deg(10);
+    side.limbs[0] = HandOnFloor(kKneelX + 0.5, kSupineY + 0.25, Eigen::Vector3d(-1, 0, 0.3));
+    side.limbs[1] = HandOnFloor(kKneelX + 0.5, kSupineY + 0.4, Eigen::Vector3d(-0.3, 0, 1));
+    RestOnFloor(&side, kHands);
+    keys.push_back(side);
+    // Over onto hands and knees with the toes just off the floor (the right hand lifted and
+    // placed on the way), then down onto them.
+    BodyKey hover = FloorPose(HandsAndKnees, 0.0);
+    for (int leg = 0; leg < 2; ++leg) hover.limbs[2 + leg].target.z() += 0.025;
+    LegsToJoints(&hover);
+    TargetsInPlace(&hover);
+    BodyKey over = Mix(side, hover, 0.5);
+    over.t = after(0.35);
+    over.limbs[0].target.z() += 0.06;
+    keys.push_back(over);
+    hover.t = after(0.35);
+    keys.push_back(hover);
+  }
+  // On hands and knees, toes tucked under (a rest there when tired).
+  BodyKey hk = FloorPose(HandsAndKnees, after(prone ? 0.7 : 0.2));
+  Slump(&hk, 0.5 * r.slump_deg);
+  keys.push_back(hk);
+  if (r.pause > 0) {
+    keys.back().hold = true;
+    keys.push_back(At(hk, t += r.pause, true));
+  }
+  // Kneel up, step the left foot forward onto one knee, rise over it, bring the right foot up.
+  BodyKey kneel = FloorPose(Kneeling, after(0.5));
+  Slump(&kneel, r.slump_deg);
+  keys.push_back(kneel);
+  BodyKey one = FloorPose(OneKnee, 0);
+  Slump(&one, r.slump_deg);
+  BodyKey stand = StandingKey(0.0);
+  stand.slerp = stand.monotone = true;
+  TargetsInPlace(&stand);
+  // A foot steps up off its toes, over to where it lands, and straight down (it leaves and
+  // meets the floor without sliding).
+  auto step_keys = [&](const BodyKey& from, const BodyKey& to, int leg, double sway) {
+    const double s = leg == 0 ? -1 : 1;
+    BodyKey up = Mix(from, to, 0.25);
+    up.t = after(0.15);
+    up.pelvis.y() -= s * sway;
+    up.limbs[2 + leg] = from.limbs[2 + leg];
+    up.limbs[2 + leg].target += Eigen::Vector3d(0.0, 0.04 * s, 0.16);
+    up.limbs[2 + leg].pitch = Deg(60);
+    up.limbs[2 + leg].hint = Eigen::Vector3d(1, 0.5 * s, 0.3);
+    keys.push_back(up);
+    BodyKey over = Mix(from, to, 0.8);
+    over.t = after(0.22);
+    over.limbs[2 + leg] = to.limbs[2 + leg];
+    over.limbs[2 + leg].target.z() += 0.05;
+    over.limbs[2 + leg].hint += Eigen::Vector3d(0, 0.3 * s, 0);
+    over.dofs[kRShX] -= Deg(10), over.dofs[kLShX] += Deg(10);  // hands clear of the thighs
+    for (int arm = 0; arm < 2; ++arm) over.limbs[arm].target.z() += 0.06;  // and the raised knee
+    keys.push_back(over);
+  };
+  step_keys(kneel, one, 1, 0.03);
+  one.t = after(0.15);
+  keys.push_back(one);
+  BodyKey rise = one;
+  rise.t = after(0.5);
+  rise.pelvis = Eigen::Vector3d(-0.2, -0.02, 0.66);
+  rise.pitch = Deg(30);
+  rise.dofs[kAbdY] = Deg(12 + r.slump_deg);
+  HandsOnLeftThigh(&rise, PoseOf(rise), 0.6, 0.85);
+  keys.push_back(rise);
+  step_keys(rise, stand, 0, 0.0);
+  stand.t = after(0.15);
+  keys.push_back(stand);
+  for (BodyKey& k : keys) TargetsInPlace(&k);
+  keys.push_back(At(stand, t + r.hold, true));
+  return keys;
 }
 
 // Speed/turn keys of a turn on the spot (smooth yaw-rate bump), then a walk off and a stop.
@@ -510,6 +914,19 @@ void LieIdleSection::Validate() const {
   Require(duration > 0, "duration", "a positive duration (s)");
 }
 
+void FloorGetUpRecipe::Validate() const {
+  ValidateLabels();
+  Require(start == "supine" || start == "prone", "start", "\"supine\" or \"prone\"");
+  Require(tempo > 0, "tempo", "a positive time scale");
+  Require(pause >= 0, "pause", "a non-negative time (s)");
+  Require(hold >= 0, "hold", "a non-negative time (s)");
+}
+
+void FloorGetUpSection::Validate() const {
+  RequireRange(tempo_scale, "tempo_scale");
+  Require(tempo_scale[0] > 0, "tempo_scale", "positive time scales");
+}
+
 void ReachRecipe::Validate() const {
   ValidateLabels();
   Require(side == "right" || side == "left", "side", "\"right\" or \"left\"");
@@ -536,6 +953,7 @@ void SyntheticCatalog::Validate() const {
   unique("bed.getup", bed.getup.name);
   for (const auto& r : lie_idle.recipes) unique("lie_idle.recipes", r.name);
   for (const auto& r : reach.recipes) unique("reach.recipes", r.name);
+  for (const auto& r : floor_getup.recipes) unique("floor_getup.recipes", r.name);
 }
 
 std::filesystem::path DefaultSyntheticCatalogPath() {
@@ -797,6 +1215,23 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
       cm.source = "synthetic composite: walk, stop, " + m.name;
     }
     out.push_back(std::move(c));
+  }
+
+  // Floor get-ups come last (after the composites, which take nothing from the stream).
+  if (wanted("getup")) {
+    const FloorGetUpSection& sec = catalog.floor_getup;
+    for (const FloorGetUpRecipe& r : sec.recipes) {
+      for (int v = 0; v < options.variants; ++v) {
+        const double tempo =
+            r.tempo * (v == 0 ? 1.0 : rng.Uniform(sec.tempo_scale[0], sec.tempo_scale[1]));
+        IdleNoise n;
+        n.seed = rng.NextU64();
+        MotionClip c = Build(FloorGetUpKeys(r, tempo), n, Meta(r, "getup", v, sec.furniture), fps,
+                             {}, /*rest_on_floor=*/true);
+        c.mutable_meta().params["floor"] = 1.0;
+        out.push_back(std::move(c));
+      }
+    }
   }
   return out;
 }

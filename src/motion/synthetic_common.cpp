@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <spdlog/spdlog.h>
@@ -71,6 +72,40 @@ Penetration MeasurePenetration(const sim::Humanoid& h, mjData* d, const MotionFr
     }
   }
   return out;
+}
+
+double LowestPoint(const sim::Humanoid& h, mjData* d, const MotionFrame& f, uint32_t skip) {
+  sim::HumanoidPose p;
+  p.root_pos = f.root_pos;
+  p.root_rot = f.root_rot;
+  p.dof_pos = f.dof_pos;
+  sim::WritePose(h, p, d);
+  const mjModel* m = h.model();
+  mj_kinematics(m, d);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int body = h.geom_body(g);
+    if (body < 0 || (skip >> body) & 1u) continue;
+    const double* pos = d->geom_xpos + 3 * g;
+    const double* R = d->geom_xmat + 9 * g;  // row-major: R[6..8] = world z of the local axes
+    const double* size = m->geom_size + 3 * g;
+    double z = pos[2] - m->geom_rbound[g];
+    switch (m->geom_type[g]) {
+      case mjGEOM_SPHERE:
+        z = pos[2] - size[0];
+        break;
+      case mjGEOM_CAPSULE:
+        z = pos[2] - std::abs(R[8]) * size[1] - size[0];
+        break;
+      case mjGEOM_BOX:
+        z = pos[2] - std::abs(R[6]) * size[0] - std::abs(R[7]) * size[1] - std::abs(R[8]) * size[2];
+        break;
+      default:
+        break;
+    }
+    lowest = std::min(lowest, z);
+  }
+  return lowest;
 }
 
 MotionMeta SyntheticMeta(const std::string& name, const std::string& skill,
@@ -176,14 +211,16 @@ Eigen::VectorXd Evaluate(const KeyTrack& k, double t) {
          (-2 * s3 + 3 * s2) * k.p[seg + 1] + (s3 - s2) * h * k.m[seg + 1];
 }
 
-// One frame from interpolated channels, with the pelvis raised by `lift`.
+// One frame from interpolated channels, with the pelvis raised by `lift` and, with `rot`,
+// that pelvis orientation instead of the interpolated yaw/pitch/roll.
 MotionFrame SolveFrame(const Eigen::VectorXd& v, const DofVector& noise_dofs,
-                       const Eigen::Vector3d& noise_root, double lift, SolveStats* stats) {
+                       const Eigen::Vector3d& noise_root, double lift, SolveStats* stats,
+                       const Eigen::Quaterniond* rot = nullptr) {
   const HumanoidSkeleton& skel = HumanoidSkeleton::Default();
   MotionFrame out;
   out.root_pos = v.segment<3>(0) + noise_root;
   out.root_pos.z() += lift;
-  out.root_rot = YawPitchRoll(v[3], v[4], v[5]);
+  out.root_rot = rot ? *rot : YawPitchRoll(v[3], v[4], v[5]);
   DofVector dofs = v.segment<sim::kNumDofs>(6) + noise_dofs;
   const DofVector base = dofs;
   // Legs first (they do not depend on the arms), then arms from the torso pose.
@@ -223,8 +260,10 @@ MotionFrame SolveFrame(const Eigen::VectorXd& v, const DofVector& noise_dofs,
 
 std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
                                    const IdleNoise& noise,
-                                   const std::vector<FurnitureSpec>* furniture, SolveStats* stats) {
+                                   const std::vector<FurnitureSpec>* furniture, SolveStats* stats,
+                                   bool rest_on_floor) {
   SIMS_CHECK(keys.size() >= 1);
+  SIMS_CHECK(!rest_on_floor || (furniture && furniture->empty()));
   KeyTrack track;
   track.keys = keys;
   const int nk = static_cast<int>(keys.size());
@@ -234,6 +273,18 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
     if (i == 0 || i == nk - 1 || keys[i].hold) continue;
     const double dt = keys[i + 1].t - keys[i - 1].t;
     if (dt > 1e-9) track.m[i] = (track.p[i + 1] - track.p[i - 1]) / dt;
+    if (!keys[i].monotone) continue;
+    const double h0 = keys[i].t - keys[i - 1].t, h1 = keys[i + 1].t - keys[i].t;
+    for (int c = 0; c < kChannels; ++c) {
+      const double d0 = track.p[i][c] - track.p[i - 1][c], d1 = track.p[i + 1][c] - track.p[i][c];
+      double& m = track.m[i][c];
+      if (d0 * d1 <= 0 || h0 <= 1e-9 || h1 <= 1e-9) {
+        m = 0;
+      } else {
+        const double limit = 3 * std::min(std::abs(d0) / h0, std::abs(d1) / h1);
+        m = std::clamp(m, -limit, limit);
+      }
+    }
   }
   Rng rng(noise.seed);
   double ph[8];
@@ -257,8 +308,70 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
     d[kLShY] = noise.fidget * std::sin(2 * M_PI * t / 2.1 + ph[6]);
     d[kAbdZ] = 0.5 * noise.fidget * std::sin(2 * M_PI * t / 2.9 + ph[7]);
   }
+  // Slerp segments: the pelvis orientation follows the shortest rotation between the keys,
+  // timed by a key-index channel splined like the others (so it turns as the body moves).
+  std::vector<Eigen::Quaterniond> rot(n);
+  std::vector<bool> has_rot(n, false);
+  bool any_slerp = false;
+  for (const BodyKey& k : keys) any_slerp = any_slerp || k.slerp;
+  if (any_slerp && nk > 1) {
+    KeyTrack index;
+    index.keys = keys;
+    for (int i = 0; i < nk; ++i) index.p.push_back(Eigen::VectorXd::Constant(1, i));
+    for (int i = 0; i < nk; ++i) {
+      index.m.push_back(Eigen::VectorXd::Zero(1));
+      if (i == 0 || i == nk - 1 || keys[i].hold) continue;
+      const double dt = keys[i + 1].t - keys[i - 1].t;
+      if (dt > 1e-9) index.m[i][0] = 2.0 / dt;
+    }
+    std::vector<Eigen::Quaterniond> q(nk);
+    for (int i = 0; i < nk; ++i) q[i] = YawPitchRoll(keys[i].yaw, keys[i].pitch, keys[i].roll);
+    for (int f = 0; f < n; ++f) {
+      const double t = f / fps;
+      if (t <= keys[0].t || t >= keys[nk - 1].t) continue;
+      int seg = 0;
+      while (seg + 1 < nk - 1 && t > keys[seg + 1].t) ++seg;
+      if (!keys[seg].slerp) continue;
+      const double s = Evaluate(index, t)[0] - seg;
+      rot[f] = q[seg].slerp(s, q[seg + 1]).normalized();
+      has_rot[f] = true;
+    }
+  }
+  auto rot_of = [&](int f) { return has_rot[f] ? &rot[f] : nullptr; };
+
   std::vector<double> lift(n, 0.0);
-  if (furniture) {
+  if (furniture && rest_on_floor) {
+    // Two-sided: raise out of the floor or lower onto it until the lowest point touches.
+    const std::shared_ptr<const sim::Humanoid> h = HumanoidSkeleton::DefaultHumanoid();
+    sim::MjDataPtr d = sim::MakeData(h->model());
+    constexpr double kTolerance = 2e-4;
+    auto lowest = [&](int f, double l) {
+      return LowestPoint(
+          *h, d.get(),
+          SolveFrame(channels[f], noise_dofs[f], noise_root[f], l, nullptr, rot_of(f)));
+    };
+    // Newton steps on the lowest point's height, then (should the limbs' IK make it
+    // non-monotonic) only upward steps until nothing is below the floor.
+    auto settle = [&](int f, double l) {
+      for (int iter = 0; iter < 32; ++iter) {
+        const double z = lowest(f, l);
+        if (std::abs(z) <= kTolerance || (iter >= 12 && z > 0)) break;
+        l -= iter < 12 ? z : std::min(z, -kTolerance);
+      }
+      return l;
+    };
+    for (int f = 0; f < n; ++f) lift[f] = settle(f, 0.0);
+    // Smoothed (the neighbours' maximum, then a light Gaussian: contact switching from one
+    // body part to another leaves kinks), never below the settled height (lower would sink a
+    // body part), and settled again where a higher pelvis brings a limb down.
+    std::vector<double> env(n);
+    for (int f = 0; f < n; ++f)
+      env[f] = std::max({lift[std::max(f - 1, 0)], lift[f], lift[std::min(f + 1, n - 1)]});
+    const std::vector<double> smooth = GaussianSmooth(env, 1.0);
+    for (int f = 0; f < n; ++f)
+      if (smooth[f] > lift[f])
+        lift[f] = lowest(f, smooth[f]) >= -kTolerance ? smooth[f] : settle(f, smooth[f]);
+  } else if (furniture) {
     // The floor-only model is the shared default humanoid; furniture needs its own model.
     const std::shared_ptr<const sim::Humanoid> h =
         furniture->empty()
@@ -269,7 +382,7 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
     for (int f = 0; f < n; ++f) {
       for (int iter = 0; iter < 10; ++iter) {
         const MotionFrame fr =
-            SolveFrame(channels[f], noise_dofs[f], noise_root[f], lift[f], nullptr);
+            SolveFrame(channels[f], noise_dofs[f], noise_root[f], lift[f], nullptr, rot_of(f));
         const double pen = MeasurePenetration(*h, d.get(), fr).world;
         if (pen <= kTolerance) break;
         lift[f] += pen;
@@ -287,7 +400,7 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
   }
   std::vector<MotionFrame> frames(n);
   for (int f = 0; f < n; ++f) {
-    frames[f] = SolveFrame(channels[f], noise_dofs[f], noise_root[f], lift[f], stats);
+    frames[f] = SolveFrame(channels[f], noise_dofs[f], noise_root[f], lift[f], stats, rot_of(f));
     if (stats) stats->max_lift = std::max(stats->max_lift, lift[f]);
   }
   return frames;
@@ -321,6 +434,7 @@ ClipQuality MeasureClipQuality(const MotionClip& clip) {
     }
     const synth::Penetration pen = synth::MeasurePenetration(*h, d.get(), fr);
     q.max_floor_penetration = std::max(q.max_floor_penetration, pen.world);
+    q.max_floor_gap = std::max(q.max_floor_gap, synth::LowestPoint(*h, d.get(), fr));
     q.max_self_penetration = std::max(q.max_self_penetration, pen.self);
   }
   return q;

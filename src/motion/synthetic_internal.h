@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,11 @@ struct Penetration {
 /// Measures a frame with `h`'s model (which includes the furniture) using scratch data `d`.
 Penetration MeasurePenetration(const sim::Humanoid& h, mjData* d, const MotionFrame& f);
 
+/// Height above the floor (z = 0) of the lowest point of the humanoid's geoms in a frame
+/// (negative: below the floor), from `h`'s model with scratch data `d`. Geoms of the bodies
+/// whose bit (1 << sim::Body) is set in `skip` are left out.
+double LowestPoint(const sim::Humanoid& h, mjData* d, const MotionFrame& f, uint32_t skip = 0);
+
 /// Labels of a synthetic clip.
 MotionMeta SyntheticMeta(const std::string& name, const std::string& skill,
                          const std::string& emotion, const std::string& style,
@@ -116,6 +122,14 @@ struct BodyKey {
   double yaw = 0, pitch = 0, roll = 0;               ///< Pelvis orientation (rad).
   DofVector dofs = DofVector::Zero();                ///< Base joint angles.
   std::array<LimbKey, 4> limbs;                      ///< Limb targets.
+  /// The pelvis turns from this key's orientation to the next key's along the shortest
+  /// rotation (slerp, timed like the other channels) instead of through interpolated
+  /// yaw/pitch/roll; for turns that are not about one axis (rolling over, lying to upright).
+  bool slerp = false;
+  /// Velocities at this key are limited so that no channel overshoots (Fritsch–Carlson):
+  /// zero where a channel holds still on either side or turns back, so a hand or foot
+  /// planted across keys stays put.
+  bool monotone = false;
 };
 /// Additive procedural motion on top of the keys (breathing, looking around, weight shift).
 struct IdleNoise {
@@ -133,11 +147,14 @@ struct SolveStats {
 };
 /// Solves keys into frames at `fps` over [0, keys.back().t]. With `furniture` (may be
 /// empty: floor only) the pelvis of each frame is raised until no humanoid geom penetrates
-/// the floor or the boxes, and the limbs are re-solved (planted feet stay planted).
+/// the floor or the boxes, and the limbs are re-solved (planted feet stay planted). With
+/// `rest_on_floor` (floor only: `furniture` empty) the pelvis of each frame is also lowered
+/// where the body floats, so that its lowest point touches the floor in every frame (clips
+/// that lie, kneel or crawl on the floor).
 std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
                                    const IdleNoise& noise = {},
                                    const std::vector<FurnitureSpec>* furniture = nullptr,
-                                   SolveStats* stats = nullptr);
+                                   SolveStats* stats = nullptr, bool rest_on_floor = false);
 
 /// Arms folded behind the back: hand IK to points behind the sacrum (pelvis frame), for the
 /// pelvis pose and the spine angles already in `dofs`.

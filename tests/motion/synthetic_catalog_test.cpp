@@ -46,6 +46,7 @@ TEST(SyntheticCatalogTest, ShippedCatalogueLoadsAndValidates) {
   EXPECT_EQ(c.sit_idle.recipes.size(), 4u);
   EXPECT_EQ(c.lie_idle.recipes.size(), 3u);
   EXPECT_EQ(c.reach.recipes.size(), 6u);
+  EXPECT_EQ(c.floor_getup.recipes.size(), 2u);
   ValidateConfig(c, "round trip");
   // Six reaches, two variants each by default (as in the shipped data/motions/synthetic),
   // and a walk-up composite of each.
@@ -76,6 +77,13 @@ TEST(SyntheticCatalogTest, MalformedCatalogueNamesFileFieldAndExpectation) {
 
   e = ErrorWith("/walk/recipes/0/gait/lean", 3);
   EXPECT_NE(e.find("walk.recipes[0].gait.lean"), std::string::npos) << e;
+
+  e = ErrorWith("/floor_getup/recipes/1/start", "sideways");
+  EXPECT_NE(e.find("floor_getup.recipes[1].start"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"supine\" or \"prone\""), std::string::npos) << e;
+
+  e = ErrorWith("/floor_getup/recipes/0/key", 1);  // floor get-ups have no pose edits
+  EXPECT_NE(e.find("floor_getup.recipes[0].key"), std::string::npos) << e;
 }
 
 // Reference hashes of clip files written by the generator before its recipes moved into the

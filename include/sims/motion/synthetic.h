@@ -6,7 +6,8 @@
 // about the sole edges), swing arcs between footholds, a pelvis that bobs and sways as the
 // legs allow, arms swinging opposite to the legs; leg IK puts the ankles on the feet. Sit,
 // lie, reach and get-up clips are keyframed whole-body poses with IK for planted feet and
-// reaching hands, placed relative to a seat or bed whose dimensions go into the metadata.
+// reaching hands, placed relative to a seat or bed whose dimensions go into the metadata;
+// get-ups from the floor (lying on the back or face down) rest on the floor in every frame.
 // Every clip is lifted out of any floor/furniture penetration (MuJoCo collision on the real
 // geometry) and stays within the joint limits.
 #pragma once
@@ -140,7 +141,7 @@ struct SyntheticOptions {
 /// The clips of the shipped catalogue (configs/motion/synthetic_catalog.json, see
 /// synthetic_catalog.h; deterministic for a seed): walks in several styles, speeds and turns,
 /// starts/stops and turns in place; standing idles; sit down / sit idle; lie down / lie idle;
-/// reaches; get-ups from seats and beds.
+/// reaches; get-ups from seats, beds and the floor.
 std::vector<MotionClip> GenerateSyntheticClips(const SyntheticOptions& options);
 
 /// Quality figures of a clip (used by tests and the generator's self-check).
@@ -150,7 +151,8 @@ struct ClipQuality {
   double max_limit_excess = 0;       ///< Largest joint-limit violation (rad).
   double max_stance_slide = 0;       ///< Fastest horizontal motion of a grounded sole corner (m/s).
   double max_self_penetration =
-      0;  ///< Deepest penetration between non-adjacent humanoid geoms (m).
+      0;                     ///< Deepest penetration between non-adjacent humanoid geoms (m).
+  double max_floor_gap = 0;  ///< Highest the body's lowest point gets above the floor (m).
 };
 
 /// Measures a clip with the default humanoid (FK + MuJoCo collision against the floor).

@@ -3,8 +3,8 @@
 // (key timing of a sit-down or a reach, how a seat is placed, the named poses) stay in the
 // generator code; a recipe picks them by name or parameter.
 //
-// Sections are generated in a fixed order (walk, idle, seat, sit_idle, bed, lie_idle, reach)
-// from one random stream, so reordering recipes changes later clips' variants.
+// Sections are generated in a fixed order (walk, idle, seat, sit_idle, bed, lie_idle, reach,
+// floor_getup) from one random stream, so reordering recipes changes later clips' variants.
 #pragma once
 
 #include <array>
@@ -132,7 +132,9 @@ struct SyntheticNoise {
 
 /// Changes to a base pose (standing, seated or supine), applied in field order; `pose` names
 /// a generator pose applied last: hands_behind_back, hands_mid_thigh, hands_on_knees,
-/// legs_crossed, on_side, knees_up (or empty).
+/// legs_crossed, on_side, knees_up, or one of the whole-body floor poses (on the floor
+/// whatever the furniture, resting on it): floor_supine, floor_prone, hands_and_knees,
+/// kneeling, one_knee (or empty).
 struct PoseEdit {
   std::array<double, 3> pelvis_offset = {0, 0, 0};  ///< Added to the pelvis position (m).
   std::optional<double> pitch_deg;                  ///< Pelvis pitch (replaces the base).
@@ -346,6 +348,49 @@ struct ReachSection {
   void Validate() const;
 };
 
+/// Getting up from lying on the floor: supine (roll onto the right side, then onto hands and
+/// knees) or prone (push up onto hands and knees), then kneel up, step the left foot forward
+/// onto one knee and stand up, ending standing at the origin facing +x. The key poses are
+/// the generator's floor poses; a recipe sets the start and the timing.
+struct FloorGetUpRecipe : SyntheticLabels {
+  std::string start = "supine";  ///< Lying on the back ("supine") or face down ("prone").
+  double tempo = 1.0;            ///< Time scale of the movement (> 1 slower).
+  double pause = 0.0;            ///< Extra seconds resting on hands and knees.
+  double hold = 0.5;             ///< Seconds standing still at the end.
+  double slump_deg = 0.0;        ///< Extra trunk and head droop while kneeling and rising.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    SerializeLabels(a);
+    a->Visit(SIMS_NVP(start));
+    a->Visit(SIMS_NVP(tempo));
+    a->Visit(SIMS_NVP(pause));
+    a->Visit(SIMS_NVP(hold));
+    a->Visit(SIMS_NVP(slump_deg));
+  }
+  /// Checks labels, start and times.
+  void Validate() const;
+};
+
+/// Floor get-ups (skill getup). They carry no furniture_* parameters (nothing to place) and
+/// the parameter floor = 1.
+struct FloorGetUpSection {
+  std::vector<std::string> furniture = {"floor"};  ///< Default furniture labels.
+  SyntheticRange tempo_scale = {0.9, 1.12};        ///< Variant tempo factor.
+  std::vector<FloorGetUpRecipe> recipes;           ///< Floor get-up recipes.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(furniture));
+    a->Visit(SIMS_NVP(tempo_scale));
+    a->Visit(SIMS_NVP(recipes));
+  }
+  /// Checks the range.
+  void Validate() const;
+};
+
 /// The whole catalogue.
 struct SyntheticCatalog {
   WalkSection walk;               ///< Skill walk.
@@ -355,6 +400,7 @@ struct SyntheticCatalog {
   BedSection bed;                 ///< Skills lie and getup.
   LieIdleSection lie_idle;        ///< Skill lie.
   ReachSection reach;             ///< Skill reach.
+  FloorGetUpSection floor_getup;  ///< Skill getup (from the floor).
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -366,6 +412,7 @@ struct SyntheticCatalog {
     a->Visit(SIMS_NVP(bed));
     a->Visit(SIMS_NVP(lie_idle));
     a->Visit(SIMS_NVP(reach));
+    a->Visit(SIMS_NVP(floor_getup));
   }
   /// Checks that clip names are unique.
   void Validate() const;
