@@ -106,6 +106,37 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
   EXPECT_GE(on_furniture, 4);
 }
 
+// A share of reference starts lie on the floor at the start of a floor get-up clip (a clip
+// without furniture parameters), placed where every body is over free floor.
+TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
+  SkillConfig c = GetUpConfig();
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.5;
+  auto s = MakeSkillEnv(c, 8);
+  auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  int floor = 0;
+  for (int round = 0; round < 3; ++round) {
+    for (int i = 0; i < 8; ++i) {
+      s.env->ResetEnv(i);
+      if (getup->start(i) != GetUpSkill::kFloorClipStart) continue;
+      ++floor;
+      EXPECT_EQ(getup->start_label(i), "floor");
+      EXPECT_TRUE(getup->floor_start(i));
+      EXPECT_TRUE(getup->reference_start(i));
+      EXPECT_LT(s.env->pose(i).root_pos.z(), 0.4) << "lying";
+      for (int b = 0; b < sim::kNumBodies; ++b)
+        EXPECT_LT(s.setup.context.height_grid->Height(s.env->bodies(i).pos[b].x(),
+                                                      s.env->bodies(i).pos[b].y()),
+                  0.05);
+      // The stand point is where it lies, not at the furniture.
+      EXPECT_LT((getup->stand_point(i) - s.env->bodies(i).pos[sim::kPelvis].head<2>()).norm(),
+                1e-9);
+    }
+  }
+  EXPECT_GE(floor, 4);
+  EXPECT_LE(floor, 20);
+}
+
 TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
   EXPECT_NEAR(GetUpSkill::RiseReward(sim::kDefaultRootHeight, 1.0, {0, 0}, {0, 0}), 1.0, 1e-12);
   EXPECT_NEAR(GetUpSkill::RiseReward(0.49, 0.5, {0, 0}, {0.5, 0}),
