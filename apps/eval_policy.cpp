@@ -60,6 +60,9 @@ int main(int argc, char** argv) {
           report.skill.c_str(), report.scene.c_str(), report.trials, report.success_rate,
           report.fall_rate, report.contact_error, report.success_steps, report.mean_num_steps,
           report.time_to_success);
+      for (const auto& [label, g] : report.by_start)
+        std::printf("  from %s: %d trials, success %.3f, falls %.3f, time to success %.2f s\n",
+                    label.c_str(), g.trials, g.success_rate, g.fall_rate, g.time_to_success);
     }
     return 0;
   });

@@ -176,6 +176,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
                    {"steps_completed", t.steps_completed},
                    {"num_steps", t.num_steps},
                    {"length", t.length}});
+    if (!t.start.empty()) per.back()["start"] = t.start;
     if (style) {
       per.back()["caption"] = t.caption;
       per.back()["emotion"] = t.emotion;
@@ -201,6 +202,15 @@ nlohmann::json PolicyEvalReport::ToJson() const {
       {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
       {"reference_starts", reference_starts},
       {"results", per}};
+  if (!by_start.empty()) {
+    nlohmann::json groups = nlohmann::json::object();
+    for (const auto& [label, g] : by_start)
+      groups[label] = {{"trials", g.trials},
+                       {"success_rate", g.success_rate},
+                       {"fall_rate", g.fall_rate},
+                       {"time_to_success_s", g.time_to_success}};
+    out["by_start"] = groups;
+  }
   if (style) {
     const StyleAccuracy& h = style->classifier_heldout;
     out["style_accuracy"] = style->accuracy;
@@ -298,7 +308,9 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   // its motion (one frame per control step) is labelled when it ends.
   std::vector<std::vector<motion::MotionFrame>> motion(n_env);
   auto begin_trial = [&](int i) {
-    if (!o.style_eval || trial[i] < 0) return;
+    if (trial[i] < 0) return;
+    rep.results[trial[i]].start = setup.skill->start_label(i);
+    if (!o.style_eval) return;
     const int k = trial[i], e = static_cast<int>(st.emotions.size());
     const auto& list = st.captions.at(st.emotions[k % e]);
     const auto& [caption, z] = list[(k / e) % list.size()];
@@ -391,6 +403,19 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.mean_num_steps /= n;
   rep.mean_length /= n;
   rep.time_to_success = successes ? rep.time_to_success / successes : 0.0;
+  for (const auto& t : rep.results) {
+    if (t.start.empty()) continue;
+    PolicyEvalReport::StartGroup& g = rep.by_start[t.start];
+    ++g.trials;
+    g.success_rate += t.success;
+    g.fall_rate += t.fell;
+    if (t.success) g.time_to_success += t.success_step * rep.control_dt;
+  }
+  for (auto& [label, g] : rep.by_start) {
+    g.time_to_success = g.success_rate > 0 ? g.time_to_success / g.success_rate : 0.0;
+    g.success_rate /= g.trials;
+    g.fall_rate /= g.trials;
+  }
   if (o.style_eval) {
     std::map<std::string, int> right, count;
     int correct = 0;

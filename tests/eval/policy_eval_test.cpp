@@ -229,6 +229,46 @@ TEST(PolicyEvalTest, SitOnHeldOutObjects) {
   }
 }
 
+// Get-up trials are grouped by how they started (seat, bed, floor clip, fall state): every
+// trial carries its label, the groups add up to the trials and their rates to the totals.
+TEST(PolicyEvalTest, GetUpTrialsAreGroupedByStart) {
+  task::SkillConfig sc;
+  sc.skill = "getup";
+  sc.object.num_objects = 2;
+  sc.object.object_categories = {"chair", "bed"};
+  motion::SyntheticOptions so;
+  so.variants = 1;
+  so.skills = {"getup"};
+  sc.motion.manifest =
+      motion::WriteMotionDataset(motion::GenerateSyntheticClips(so),
+                                 sims::testing::TempDir("eval_getup_clips"), "getup")
+          .string();
+  sc.motion.skills = {"getup"};
+  sc.getup.fall_states = 8;
+  const fs::path policy = TinyPolicy(sc, 15, "eval_getup");
+  PolicyEvalOptions o = TwoEnvOptions(policy, 12);
+  o.reference_starts = 0.5;
+  const PolicyEvalReport r = EvaluatePolicy(o);
+  ASSERT_FALSE(r.by_start.empty());
+  int trials = 0;
+  double falls = 0;
+  for (const auto& [label, g] : r.by_start) {
+    EXPECT_TRUE(label == "seat" || label == "bed" || label == "floor" || label == "fall") << label;
+    trials += g.trials;
+    falls += g.fall_rate * g.trials;
+  }
+  EXPECT_EQ(trials, 12);
+  EXPECT_NEAR(falls / 12, r.fall_rate, 1e-12);
+  EXPECT_GE(r.by_start.size(), 2u) << "both clip and fall-state starts";
+  for (const auto& t : r.results) EXPECT_FALSE(t.start.empty());
+  EXPECT_TRUE(r.ToJson().contains("by_start"));
+  // A skill without start kinds reports none.
+  const PolicyEvalReport walk =
+      EvaluatePolicy(TwoEnvOptions(TinyPolicy(WalkConfig(), 10, "eval_nostart"), 2));
+  EXPECT_TRUE(walk.by_start.empty());
+  EXPECT_FALSE(walk.ToJson().contains("by_start"));
+}
+
 TEST(PolicyEvalTest, UnifiedOnAScenePlan) {
   task::SkillConfig sc;
   sc.skill = "unified";

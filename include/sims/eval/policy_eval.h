@@ -62,6 +62,7 @@ struct TrialResult {
   int steps_completed = 0;       ///< Plan steps passed (single-step skills: 1 on success).
   int num_steps = 1;             ///< Plan steps of the trial.
   int length = 0;                ///< Control steps the trial ran.
+  std::string start;             ///< How the trial started (Skill::start_label; "" = no kinds).
   std::string caption;           ///< Style evaluation: the caption whose z the policy saw.
   std::string emotion;           ///< ... its emotion.
   std::string style;             ///< ... the classifier's label of the motion ("" = too short).
@@ -83,25 +84,33 @@ struct StyleEvalReport {
 
 /// Aggregated results.
 struct PolicyEvalReport {
-  std::string skill;                     ///< Evaluated skill.
-  std::string checkpoint;                ///< Policy file.
-  std::string scene;                     ///< Scene name (training ground or plan).
-  int trials = 0;                        ///< Trials run.
-  uint64_t seed = 0;                     ///< Seed.
-  double control_dt = 1.0 / 30.0;        ///< Seconds per control step.
-  double success_rate = 0;               ///< Fraction of successful trials.
-  double fall_rate = 0;                  ///< Fraction of trials that ended by a fall.
-  double force_end_rate = 0;             ///< Fraction ended by excessive contact force.
-  double contact_error = 0;              ///< Mean final goal error (m).
-  double min_contact_error = 0;          ///< Mean over trials of the smallest goal error (m).
-  double success_steps = 0;              ///< Mean plan steps passed per trial.
-  double mean_num_steps = 1;             ///< Mean plan steps per trial.
-  double time_to_success = 0;            ///< Mean seconds to first success (successful trials).
-  double mean_length = 0;                ///< Mean trial length (control steps).
-  sim::ObsAblation ablation;             ///< Inputs that were withheld.
-  double reference_starts = 0;           ///< Share of trials asked to start from motion clips.
-  std::optional<StyleEvalReport> style;  ///< Present with --style-eval.
-  std::vector<TrialResult> results;      ///< Per trial.
+  std::string skill;               ///< Evaluated skill.
+  std::string checkpoint;          ///< Policy file.
+  std::string scene;               ///< Scene name (training ground or plan).
+  int trials = 0;                  ///< Trials run.
+  uint64_t seed = 0;               ///< Seed.
+  double control_dt = 1.0 / 30.0;  ///< Seconds per control step.
+  double success_rate = 0;         ///< Fraction of successful trials.
+  double fall_rate = 0;            ///< Fraction of trials that ended by a fall.
+  double force_end_rate = 0;       ///< Fraction ended by excessive contact force.
+  double contact_error = 0;        ///< Mean final goal error (m).
+  double min_contact_error = 0;    ///< Mean over trials of the smallest goal error (m).
+  double success_steps = 0;        ///< Mean plan steps passed per trial.
+  double mean_num_steps = 1;       ///< Mean plan steps per trial.
+  double time_to_success = 0;      ///< Mean seconds to first success (successful trials).
+  double mean_length = 0;          ///< Mean trial length (control steps).
+  sim::ObsAblation ablation;       ///< Inputs that were withheld.
+  double reference_starts = 0;     ///< Share of trials asked to start from motion clips.
+  /// Per start kind (skills with start labels, e.g. get-up's seat/bed/floor/fall).
+  struct StartGroup {
+    int trials = 0;              ///< Trials that started this way.
+    double success_rate = 0;     ///< Their success rate.
+    double fall_rate = 0;        ///< Their fall rate.
+    double time_to_success = 0;  ///< Mean seconds to success (successful ones).
+  };
+  std::map<std::string, StartGroup> by_start;  ///< Start label → results (empty: no labels).
+  std::optional<StyleEvalReport> style;        ///< Present with --style-eval.
+  std::vector<TrialResult> results;            ///< Per trial.
 
   /// JSON with the aggregates and the per-trial results.
   nlohmann::json ToJson() const;
