@@ -114,6 +114,7 @@ TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
   c.getup.floor_clip_share = 0.5;
   auto s = MakeSkillEnv(c, 8);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  std::vector<float> zero(8 * sim::kNumDofs, 0.0f);
   int floor = 0;
   for (int round = 0; round < 3; ++round) {
     for (int i = 0; i < 8; ++i) {
@@ -131,6 +132,11 @@ TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
       // The stand point is where it lies, not at the furniture.
       EXPECT_LT((getup->stand_point(i) - s.env->bodies(i).pos[sim::kPelvis].head<2>()).norm(),
                 1e-9);
+      // Lying on the floor does not end the episode at once: the fall states' grace applies.
+      for (int t = 0; t < 5; ++t) {
+        s.env->Step(zero.data());
+        ASSERT_FALSE(s.env->dones()[i]) << "step " << t;
+      }
     }
   }
   EXPECT_GE(floor, 4);

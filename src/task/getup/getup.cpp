@@ -194,6 +194,8 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
     const Eigen::Vector2d root = context_.motions->StateAt(clip, t).pose.root_pos.head<2>();
     const ClipPlacement placement = ClipPlacement::Align(p, rng.Uniform(-M_PI, M_PI), root, 0.0);
     PlaceReference(i, clip, t, placement, init);
+    // Lying on the floor is a fall to the env: the same grace as a fall state.
+    init->termination_grace_steps = config_.getup.fall_grace_steps;
     start_[i] = kFloorClipStart;
     return true;
   }

@@ -4,7 +4,7 @@
 //   reference: a get-up clip's first quarter (still seated / lying). Furniture clips are placed
 //     on the env's seat or bed by their stored furniture parameters; floor clips (clips with no
 //     furniture parameters: supine or prone on the floor) at a free floor point clear of the
-//     furniture, a getup_floor_clip_share of the reference starts.
+//     furniture, a getup_floor_clip_share of the reference starts, with the fall states' grace.
 //   default: one of getup_fall_states precomputed fall states (ASE getup: a random root
 //     orientation and random actions U[−0.5, 0.5] held for 300 physics steps at 120 Hz, i.e.
 //     ASE's 150 steps at 60 Hz), placed where every body lies on free floor, with
