@@ -382,9 +382,16 @@ std::vector<Binding> Bind(const LongScript& script, const SceneGraph& layout,
                           Pretty(k.furniture) + ") could not be placed: " + out[i].note);
     }
   }
-  // Walks to "the floor" head for the next bound object; a final free walk stays unbound.
+  // Walks to "the floor" head for the next bound object; a final free walk stays unbound. A
+  // get-up from the floor happens where the character is.
   for (std::size_t i = 0; i < n; ++i) {
     if (target[i] != -2) continue;
+    if (script.keyframes[i].skill == Skill::kGetUp) {
+      out[i].placed = true;
+      out[i].room = i > 0 ? out[i - 1].room : prefer_room[i];
+      out[i].note = "gets up from the floor where the character is";
+      continue;
+    }
     std::size_t j = i + 1;
     while (j < n && (target[j] == -2 || !out[j].placed || out[j].object.empty())) ++j;
     if (j < n) {

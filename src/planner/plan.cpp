@@ -33,8 +33,9 @@ void PlanKeyframe::Validate() const {
   const SkillTraits* traits = FindSkillTraits(skill);
   Require(traits && traits->scripted, "skill",
           "one of " + SkillNames([](const SkillTraits& t) { return t.scripted; }));
-  // Walk-like keyframes may end on free floor; every other placed keyframe binds an object.
-  if (placed && !traits->navigates)
+  // Walks may end on free floor and a get-up may happen on the floor; a placed keyframe of a
+  // skill that needs an object binds one.
+  if (placed && traits->needs_object)
     Require(!object.empty(), "object", "an object instance when placed");
 }
 

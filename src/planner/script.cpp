@@ -433,9 +433,18 @@ std::vector<GrammarIssue> CheckGrammar(const std::vector<Keyframe>& keyframes,
         st.near = RefOf(k);
         break;
       case Skill::kGetUp:
+        // A get-up from the floor right after a walk is what a script writes after a fall (a
+        // drunk character has fallen): the FSM's get-up succeeds at once if it stands.
+        if (st.posture == Posture::kStanding && k.furniture == "floor" && i > 0 &&
+            keyframes[i - 1].skill == Skill::kWalk) {
+          st.near_any = false;
+          st.near_known = false;
+          break;
+        }
         if (st.posture == Posture::kStanding) {
           issues.push_back({idx, "skill",
-                            "get-up only after sit or lie (the character is already standing)",
+                            "get-up only after sit or lie, or from the floor right after a walk "
+                            "(the character is already standing)",
                             false});
           break;
         }
@@ -533,6 +542,12 @@ std::vector<Keyframe> InsertTransitions(const std::vector<Keyframe>& keyframes,
       st.near_any = k.furniture == "floor";
       st.near_known = !st.near_any;
       st.near = RefOf(k);
+    } else if (k.skill == Skill::kGetUp && st.posture == Posture::kStanding) {
+      // (CheckGrammar let it through: from the floor right after a walk.)
+      k.style = "floor";  // from the floor, where the character is (see CheckGrammar)
+      k.furniture = "floor";
+      st.near_any = false;
+      st.near_known = false;
     } else if (k.skill == Skill::kGetUp) {
       k.style = st.posture == Posture::kLying ? "bed" : "seat";
       k.furniture = st.on.category;

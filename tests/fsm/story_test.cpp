@@ -229,6 +229,27 @@ TEST(StoryRecoveryTest, ASuccessfulGetUpRetriesTheKeyframeUntilRetriesRunOut) {
   }
 }
 
+// A script's get-up from the floor (no object) while the character stands succeeds at once:
+// standing clear is the get-up's success (scripted standing pose).
+TEST(StoryRecoveryTest, AGetUpFromTheFloorWhileStandingSucceedsAtOnce) {
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
+  StoryOptions o;
+  o.skill_timeout_s = 3.0;
+  StoryRunner runner(scene, LoadPolicySet(TinyPolicySetWithGetUp()), o);
+  runner.SetActionOverride([&](const std::string&, const float*, float* a) {
+    const double standing[sim::kNumDofs] = {0};
+    runner.humanoid()->TargetsToAction(standing, a);
+  });
+  Instruction up;
+  up.skill = "getup";
+  up.caption = "gets up from the floor after falling";
+  const auto r = runner.Run({up}, {3, 0, 0}, 0.0, nullptr);
+  ASSERT_EQ(r.keyframes.size(), 1u);
+  EXPECT_TRUE(r.keyframes[0].success) << r.keyframes[0].note;
+  EXPECT_EQ(r.keyframes[0].falls, 0);
+  EXPECT_LT(r.keyframes[0].end_time, 1.5) << "well before the 3 s time-out";
+}
+
 TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {
   Instruction sit;
   sit.skill = "sit";

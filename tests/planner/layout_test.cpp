@@ -177,6 +177,23 @@ TEST(LayoutTest, PicksTheMatchingRoomAndBindsEveryKeyframe) {
   EXPECT_EQ(m.bindings[1].room, "my_bedroom");
 }
 
+// A get-up from the floor after a walk (a fall in the script) is placed where the character
+// is: no object, while the walk before it still heads for the next object.
+TEST(LayoutTest, AGetUpFromTheFloorBindsNoObject) {
+  LayoutDatabase db = HandMadeDatabase();
+  LongScript ls = Script(R"({"scene": "living room", "keyframes": [
+      {"skill": "loco", "furniture": "floor"}, {"skill": "getup", "furniture": "floor"},
+      {"skill": "loco", "furniture": "sofa"}, {"skill": "sit", "furniture": "sofa"}]})");
+  LayoutMatch m = MatchLayouts(ls, db);
+  ASSERT_EQ(m.bindings.size(), 4u);
+  EXPECT_TRUE(m.bindings[1].placed);
+  EXPECT_TRUE(m.bindings[1].object.empty());
+  EXPECT_THAT(m.bindings[1].note, HasSubstr("gets up from the floor"));
+  EXPECT_EQ(m.bindings[0].object, "sofa_0");
+  EXPECT_EQ(m.bindings[3].object, "sofa_0");
+  EXPECT_TRUE(m.warnings.empty());
+}
+
 TEST(LayoutTest, SubstitutionWhenTheCategoryIsMissing) {
   LayoutDatabase db = HandMadeDatabase();
   // No layout has an armchair; the living room's stool (stool↔armchair) or the library's chair

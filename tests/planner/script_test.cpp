@@ -147,10 +147,26 @@ TEST(ScriptTest, BadTypesAndMissingFields) {
   EXPECT_THAT(ErrorOf("[1, 2]"), HasSubstr("a JSON object"));
 }
 
-TEST(ScriptTest, GetUpOnlyAfterSitOrLie) {
-  std::string e = ErrorOf(R"({"keyframes": [{"skill": "loco"}, {"skill": "standup"}]})");
-  EXPECT_THAT(e, HasSubstr("keyframes[1].skill"));
+// A get-up needs something to get up from: a seat or bed the character is on, or the floor
+// right after a walk (SIMS scripts write that after a fall: a drunk character has fallen).
+TEST(ScriptTest, GetUpOnlyAfterSitOrLieOrFromTheFloorAfterAWalk) {
+  std::string e = ErrorOf(R"({"keyframes": [{"skill": "standup"}, {"skill": "loco"}]})");
+  EXPECT_THAT(e, HasSubstr("keyframes[0].skill"));
   EXPECT_THAT(e, HasSubstr("get-up only after sit or lie"));
+  e = ErrorOf(
+      R"({"keyframes": [{"skill": "loco", "furniture": "sofa"}, {"skill": "getup", "furniture": "sofa"}]})");
+  EXPECT_THAT(e, HasSubstr("keyframes[1].skill"));
+  // After a walk, from the floor: accepted, and the get-up stays on the floor.
+  const ShortScript fell = ParseShortScriptText(
+      R"({"keyframes": [{"skill": "loco", "caption": "staggers"},
+                        {"skill": "getup", "furniture": "floor", "caption": "gets up after falling"},
+                        {"skill": "loco", "furniture": "sofa"}, {"skill": "sitdown", "furniture": "sofa"}]})",
+      "fell.json");
+  const auto with = InsertTransitions(fell.keyframes, "fell.json");
+  ASSERT_EQ(with.size(), 4u);
+  EXPECT_EQ(with[1].skill, Skill::kGetUp);
+  EXPECT_EQ(with[1].furniture, "floor");
+  EXPECT_EQ(with[1].style, "floor");
   e = ErrorOf(
       R"({"keyframes": [{"skill": "loco", "furniture": "chair"}, {"skill": "sit", "furniture": "chair"},
                                 {"skill": "getup", "furniture": "bed"}]})");
