@@ -46,6 +46,17 @@ const std::filesystem::path& TinyPolicySetWithGetUp() {
   return set;
 }
 
+// A walk instruction to world point p (keyframe 0).
+Instruction WalkTo(const Eigen::Vector3d& p) {
+  Instruction in;
+  in.keyframe = 0;
+  in.skill = "walk";
+  in.caption = "walk";
+  in.target.point = p;
+  in.target.has_point = true;
+  return in;
+}
+
 class StoryRunnerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -65,15 +76,6 @@ class StoryRunnerTest : public ::testing::Test {
       else
         std::fill(a, a + sim::kNumDofs, -1.0f);
     });
-  }
-  Instruction WalkTo(const Eigen::Vector3d& p) {
-    Instruction in;
-    in.keyframe = 0;
-    in.skill = "walk";
-    in.caption = "walk";
-    in.target.point = p;
-    in.target.has_point = true;
-    return in;
   }
   std::shared_ptr<scene::Scene> scene_;
   std::unique_ptr<StoryRunner> runner_;
@@ -135,10 +137,7 @@ TEST(StoryStartTest, StartIsAShortWalkFromTheFirstGoalAndTheSeedTurnsIt) {
   room->walls.Append(scene::TriangleMesh::Box({-3, 3, 0}, {3, 3.1, 2}));
   room->walls.Append(scene::TriangleMesh::Box({-3.1, -3, 0}, {-3, 3, 2}));
   room->walls.Append(scene::TriangleMesh::Box({3, -3, 0}, {3.1, 3, 2}));
-  Instruction walk;
-  walk.skill = "walk";
-  walk.target.point = {0.5, 0, 0};
-  walk.target.has_point = true;
+  const Instruction walk = WalkTo({0.5, 0, 0});
   StoryRunner canonical_runner(room, LoadPolicySet(TinyPolicySet()), StoryOptions{});
   const Eigen::Vector3d canonical = canonical_runner.DefaultStart({walk});
   const double d0 = (canonical.head<2>() - Eigen::Vector2d(0.5, 0)).norm();
@@ -172,10 +171,7 @@ TEST(StoryRecoveryTest, AFallHandsOverToTheGetUpPolicyBeforeTheStoryGoesOn) {
     else
       runner.humanoid()->TargetsToAction(standing, a);
   });
-  Instruction walk;
-  walk.skill = "walk";
-  walk.target.point = {3, 4, 0};
-  walk.target.has_point = true;
+  const Instruction walk = WalkTo({3, 4, 0});
   const auto r = runner.Run({walk}, {3, 0, 0}, 0.0, nullptr);
   ASSERT_EQ(r.keyframes.size(), 1u);
   EXPECT_EQ(r.keyframes[0].falls, 1);
@@ -207,10 +203,7 @@ TEST(StoryRecoveryTest, ASuccessfulGetUpRetriesTheKeyframeUntilRetriesRunOut) {
       const double standing[sim::kNumDofs] = {0};
       runner.humanoid()->TargetsToAction(standing, a);
     });
-    Instruction walk;
-    walk.skill = "walk";
-    walk.target.point = {3, 4, 0};
-    walk.target.has_point = true;
+    const Instruction walk = WalkTo({3, 4, 0});
     const auto r = runner.Run({walk}, {3, 0, 0}, 0.0, nullptr);
     ASSERT_EQ(r.keyframes.size(), 1u);
     const KeyframeOutcome& k = r.keyframes[0];
@@ -373,10 +366,7 @@ TEST(StoryBatchTest, AFailingStoryDoesNotStopTheOthers) {
   o.missing_policy_fails = false;
   auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
   StoryRunner a(scene, policies, o), b(scene, policies, o);
-  Instruction walk;
-  walk.skill = "walk";
-  walk.target.point = {3, 2, 0};
-  walk.target.has_point = true;
+  const Instruction walk = WalkTo({3, 2, 0});
   Instruction sit;
   sit.skill = "sit";
   sit.target.object = 0;
