@@ -157,7 +157,7 @@ class Skill : public sim::TaskHook {
   virtual double goal_error(const sim::EnvView& view) const;
   /// How env `env_id`'s current episode started, for evaluation broken down by start kind
   /// (get-up: "seat", "bed", "floor", "fall"); "" when the skill has no such kinds.
-  virtual std::string start_label(int env_id) const { return ""; }
+  virtual std::string start_label(int /*env_id*/) const { return ""; }
   /// Width of the skill's own observation segment "task" after the contact goals (0: none).
   virtual int task_obs_dim() const { return 0; }
   /// Writes task_obs_dim() values for env view.env_id.
