@@ -177,8 +177,8 @@ namespace {
 // has one).
 std::deque<SkillInfo>& Registry() {
   static std::deque<SkillInfo> skills = {
-      WalkSkillInfo(),  SitSkillInfo(),      LieSkillInfo(),     ReachSkillInfo(),
-      GetUpSkillInfo(), UnifiedSkillInfo(),
+      WalkSkillInfo(),  SitSkillInfo(),   LieSkillInfo(),
+      ReachSkillInfo(), GetUpSkillInfo(), UnifiedSkillInfo(),
   };
   return skills;
 }
