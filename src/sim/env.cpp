@@ -399,7 +399,16 @@ class ByteReader {
   const std::string& in_;
   size_t pos_ = 0;
 };
-constexpr uint32_t kStateMagic = 0x53494D32;  // "SIM2": slots carry the start kind
+constexpr uint32_t kStateMagic = 0x53494D33;  // "SIM3": the stats are count-prefixed
+// "SIM2" snapshots wrote EnvStats as one raw struct: 6 counters, or 7 for those written after
+// `recoveries` was added and before SIM3 (2026-12-03); both still load.
+constexpr uint32_t kStateMagicSim2 = 0x53494D32;
+constexpr int kNumStats = 7;
+int64_t* StatsField(EnvStats* st, int k) {
+  int64_t* f[kNumStats] = {&st->steps,     &st->episodes,      &st->falls,     &st->timeouts,
+                           &st->task_ends, &st->instabilities, &st->recoveries};
+  return f[k];
+}
 }  // namespace
 
 std::string BatchedEnv::SaveState() const {
@@ -411,7 +420,9 @@ std::string BatchedEnv::SaveState() const {
   w.Put(m->nv);
   w.Put(m->nu);
   w.Put(config_.amp_history);
-  w.Put(stats_);
+  w.Put(kNumStats);
+  EnvStats stats = stats_;
+  for (int k = 0; k < kNumStats; ++k) w.Put(*StatsField(&stats, k));
   for (int i = 0; i < config_.num_envs; ++i) {
     const Slot& s = *slots_[i];
     const mjData* d = s.data.get();
@@ -440,14 +451,19 @@ void BatchedEnv::LoadState(const std::string& state) {
   // the environment half-restored, so the current state is put back.
   const std::string before = SaveState();
   try {
-    ApplyState(state);
+    try {
+      ApplyState(state, 6);
+    } catch (const Error&) {
+      // A SIM2 snapshot with 7 counters (see kStateMagicSim2); SIM3 ignores the hint.
+      ApplyState(state, 7);
+    }
   } catch (const Error&) {
-    ApplyState(before);
+    ApplyState(before, 0);
     throw;
   }
 }
 
-void BatchedEnv::ApplyState(const std::string& state) {
+void BatchedEnv::ApplyState(const std::string& state, int sim2_stats) {
   const mjModel* m = humanoid_->model();
   ByteReader r(state);
   const auto expect = [&](auto value, const char* field) {
@@ -455,13 +471,21 @@ void BatchedEnv::ApplyState(const std::string& state) {
       ThrowInputError("environment state", field, "the same value as this environment",
                       "a different one (config or model changed since the snapshot)");
   };
-  expect(kStateMagic, "magic");
+  const auto magic = r.Get<uint32_t>();
+  if (magic != kStateMagic && magic != kStateMagicSim2)
+    ThrowInputError("environment state", "magic", "SIM3 (or SIM2)", "another value");
   expect(config_.num_envs, "num_envs");
   expect(m->nq, "nq");
   expect(m->nv, "nv");
   expect(m->nu, "nu");
   expect(config_.amp_history, "amp_history");
-  stats_ = r.Get<EnvStats>();
+  const int num_stats = magic == kStateMagic ? r.Get<int>() : sim2_stats;
+  if (num_stats < 6 || num_stats > kNumStats)
+    ThrowInputError("environment state", "stats", "6 to " + std::to_string(kNumStats) + " counters",
+                    std::to_string(num_stats));
+  EnvStats stats;
+  for (int k = 0; k < num_stats; ++k) *StatsField(&stats, k) = r.Get<int64_t>();
+  stats_ = stats;
   for (int i = 0; i < config_.num_envs; ++i) {
     Slot& s = *slots_[i];
     mjData* d = s.data.get();

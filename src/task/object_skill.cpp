@@ -191,20 +191,15 @@ ObjectSkill::ObjectSkill(const SkillConfig& config, const SkillContext& context)
     : Skill(config, context) {
   SIMS_CHECK(context.scene != nullptr);
   const int n = context.num_envs;
-  object_.assign(n, 0);
-  hold_.assign(n, 0);
+  ObjectState initial;
+  initial.level = config.object.spawn_curriculum ? 0.0 : 1.0;
+  env_.assign(n, initial);
   override_.assign(n, -1);
-  error_.assign(n, 0.0);
-  target_W_.assign(n, Eigen::Vector3d::Zero());
-  anchor_W_.assign(n, Eigen::Vector2d::Zero());
-  level_.assign(n, config.object.spawn_curriculum ? 0.0 : 1.0);
-  started_.assign(n, 0);
-  reference_.assign(n, 0);
 }
 
 void ObjectSkill::SetSpawnLevel(int env_id, double level) {
   SIMS_CHECK(level >= 0 && level <= 1);
-  level_[env_id] = level;
+  env_[env_id].level = level;
 }
 
 double ObjectSkill::ClipContactTime(int clip) const {
@@ -239,8 +234,8 @@ double ObjectSkill::PreContactTime(int clip, Rng& rng) const {
 
 void ObjectSkill::SetEpisodeTarget(int env_id, const Eigen::Vector3d& target_W,
                                    const Eigen::Vector2d& anchor_W) {
-  target_W_[env_id] = target_W;
-  anchor_W_[env_id] = anchor_W;
+  env_[env_id].target_W = target_W;
+  env_[env_id].anchor_W = anchor_W;
 }
 
 void ObjectSkill::ObserveTask(const sim::EnvView& view, float* out) const {
@@ -252,7 +247,7 @@ void ObjectSkill::ObserveTask(const sim::EnvView& view, float* out) const {
   auto put = [&out](const Eigen::Vector3d& v) {
     for (int k = 0; k < 3; ++k) *out++ = static_cast<float>(v[k]);
   };
-  put(h_inv * (target_W_[i] - root));
+  put(h_inv * (env_[i].target_W - root));
   const ObjectGeometry& g = geometry(i);
   for (int c = 0; c < 8; ++c) {
     const Eigen::Vector3d p_O((c & 1) ? g.local.max.x() : g.local.min.x(),
@@ -297,8 +292,8 @@ bool ObjectSkill::BeginInstruction(const sim::EnvView& view, const InstructionTa
     }
   }
   if (k < 0) return false;
-  object_[i] = k;
-  hold_[i] = 0;
+  env_[i].object = k;
+  env_[i].hold = 0;
   Rng rng(0x5EEDull + static_cast<uint64_t>(objects_[k].object));  // same task every time
   SampleTask(i, rng);
   OnReset(view, rng);
@@ -335,7 +330,7 @@ bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
 Eigen::Vector2d ObjectSkill::SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const {
   const auto& o = config_.object;
   const double far =
-      o.spawn_min_distance + level_[env_id] * (o.spawn_max_distance - o.spawn_min_distance);
+      o.spawn_min_distance + env_[env_id].level * (o.spawn_max_distance - o.spawn_min_distance);
   const double half_arc = 0.5 * o.spawn_arc_deg * M_PI / 180.0;
   Eigen::Vector2d p = g.center;
   for (int attempt = 0; attempt < 32; ++attempt) {
@@ -354,28 +349,28 @@ void ObjectSkill::DefaultInit(int env_id, Rng& rng, sim::InitialState* init) {
   init->pose.root_pos.y() = p.y();
   init->pose.root_rot = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
   const auto& clips = ReferenceClips();
-  style_[env_id] = clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+  SetStyle(env_id, clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))]);
 }
 
 void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
   // The curriculum learns from the episode that just ended (default starts only: reference
   // starts begin next to the object whatever the level).
-  if (config_.object.spawn_curriculum && started_[env_id] && !reference_[env_id]) {
+  if (config_.object.spawn_curriculum && env_[env_id].started && !env_[env_id].reference) {
     const double step = config_.object.spawn_curriculum_step;
-    const bool done = hold_[env_id] >= config_.success_hold_steps;
-    level_[env_id] = std::clamp(level_[env_id] + (done ? step : -0.5 * step), 0.0, 1.0);
+    const bool done = env_[env_id].hold >= config_.success_hold_steps;
+    env_[env_id].level = std::clamp(env_[env_id].level + (done ? step : -0.5 * step), 0.0, 1.0);
   }
   const int n = static_cast<int>(objects_.size());
-  object_[env_id] =
+  env_[env_id].object =
       override_[env_id] >= 0 ? override_[env_id] : static_cast<int>(rng.UniformInt(n));
-  hold_[env_id] = 0;
-  error_[env_id] = 0;
+  env_[env_id].hold = 0;
+  env_[env_id].error = 0;
   SampleTask(env_id, rng);
   const bool try_reference =
       context_.motions && !ReferenceClips().empty() && rng.Bernoulli(config_.reference_init_prob);
   if (!(try_reference && ReferenceInit(env_id, rng, init))) DefaultInit(env_id, rng, init);
-  started_[env_id] = 1;
-  reference_[env_id] = init->reference ? 1 : 0;
+  env_[env_id].started = true;
+  env_[env_id].reference = init->reference;
 }
 
 void ObjectSkill::PlaceReference(int env_id, int clip, double t, const ClipPlacement& placement,
@@ -385,7 +380,7 @@ void ObjectSkill::PlaceReference(int env_id, int clip, double t, const ClipPlace
   init->history.clear();
   for (const auto& h : ref.history) init->history.push_back(placement.Apply(h));
   init->reference = true;
-  style_[env_id] = clip;
+  SetStyle(env_id, clip);
 }
 
 int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g,
@@ -420,8 +415,8 @@ bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::I
 
 sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view, double goal_sum,
                                                    double d) {
-  error_[view.env_id] = d;
-  const double r = ContactReward(anchor_W_[view.env_id], view.pose->root_pos.head<2>(),
+  env_[view.env_id].error = d;
+  const double r = ContactReward(env_[view.env_id].anchor_W, view.pose->root_pos.head<2>(),
                                  view.pose->root_lin_vel.head<2>(), FacingOf(*view.pose),
                                  config_.target_speed, goal_sum);
   return Finish(view, r, d < config_.object.contact_success_threshold);
@@ -432,49 +427,30 @@ sim::TaskStepResult ObjectSkill::Finish(const sim::EnvView& view, double reward,
   sim::TaskStepResult r;
   r.reward = static_cast<float>(reward);
   r.success = success;
-  hold_[i] = success ? hold_[i] + 1 : 0;
-  r.completed = hold_[i] >= config_.success_hold_steps;
+  env_[i].hold = success ? env_[i].hold + 1 : 0;
+  r.completed = env_[i].hold >= config_.success_hold_steps;
   if (r.completed) r.truncate = true;
   if (config_.object.max_contact_force > 0 && ContactForce(view) > config_.object.max_contact_force)
     r.terminate = true;
   return r;
 }
 
-void ObjectSkill::SaveTaskState(int, std::vector<double>*) const {}
-void ObjectSkill::LoadTaskState(int, StateReader*) {}
-
-std::vector<double> ObjectSkill::SaveSkillState(int env_id) const {
-  const Eigen::Vector3d& t = target_W_[env_id];
-  const Eigen::Vector2d& a = anchor_W_[env_id];
-  std::vector<double> s = {static_cast<double>(object_[env_id]),
-                           static_cast<double>(hold_[env_id]),
-                           error_[env_id],
-                           t.x(),
-                           t.y(),
-                           t.z(),
-                           a.x(),
-                           a.y(),
-                           level_[env_id],
-                           static_cast<double>(started_[env_id]),
-                           static_cast<double>(reference_[env_id])};
-  SaveTaskState(env_id, &s);
-  return s;
+void ObjectState::Serialize(StateArchive* a, int num_objects) {
+  a->Int("object", &object, 0, num_objects - 1);
+  a->Int("hold", &hold, 0, std::numeric_limits<int>::max());
+  a->Real("error", &error);
+  a->Reals("target", &target_W);
+  a->Reals("anchor", &anchor_W);
+  a->Real("level", &level);
+  a->Flag("started", &started);
+  a->Flag("reference", &reference);
 }
 
-void ObjectSkill::LoadSkillState(int env_id, const double* d, size_t size) {
-  StateReader r(name() + " skill state", d, size);
-  object_[env_id] =
-      static_cast<int>(r.Int("object", 0, static_cast<long long>(objects_.size()) - 1));
-  hold_[env_id] = static_cast<int>(r.Int("hold", 0, std::numeric_limits<int>::max()));
-  error_[env_id] = r.Real("error");
-  for (int k = 0; k < 3; ++k) target_W_[env_id][k] = r.Real("target");
-  for (int k = 0; k < 2; ++k) anchor_W_[env_id][k] = r.Real("anchor");
-  level_[env_id] = r.Real("level");
-  started_[env_id] = r.Flag("started");
-  reference_[env_id] = r.Flag("reference");
-  StateReader task(name() + " skill state", d + r.used(), r.left());
-  LoadTaskState(env_id, &task);
-  task.ExpectEnd();
+void ObjectSkill::SerializeTaskState(int, StateArchive*) {}
+
+void ObjectSkill::SerializeSkillState(int env_id, StateArchive* a) {
+  env_[env_id].Serialize(a, static_cast<int>(objects_.size()));
+  SerializeTaskState(env_id, a);
 }
 
 }  // namespace sims::task

@@ -11,7 +11,6 @@
 #include "sims/task/lie/lie.h"
 #include "sims/task/reach/reach.h"
 #include "sims/task/sit/sit.h"
-#include "sims/task/state_reader.h"
 #include "sims/task/unified/unified.h"
 #include "sims/task/walk/walk.h"
 
@@ -33,11 +32,7 @@ Skill::Skill(const SkillConfig& config, const SkillContext& context)
     : config_(config), context_(context) {
   SIMS_CHECK(context_.humanoid && context_.height_grid && context_.num_envs > 0);
   heightmap_ = std::make_unique<scene::HeightmapSampler>(context_.height_grid, config_.heightmap);
-  goals_.resize(context_.num_envs);
-  for (auto& g : goals_) g.fill(Eigen::Vector3d::Zero());
-  mask_.assign(context_.num_envs, 0);
-  style_.assign(context_.num_envs, -1);
-  style_vector_.assign(context_.num_envs, Eigen::VectorXf());
+  state_.resize(context_.num_envs);
   if (context_.motions)
     for (int c = 0; c < context_.motions->num_clips(); ++c) reference_clips_.push_back(c);
 }
@@ -66,17 +61,17 @@ std::vector<sim::ObsSegment> Skill::obs_segments() const {
 void Skill::ObserveTask(const sim::EnvView&, float*) const {}
 
 void Skill::SetGoal(int env_id, int joint, const Eigen::Vector3d& target) {
-  goals_[env_id][joint] = target;
-  mask_[env_id] |= 1u << joint;
+  state_[env_id].goals[joint] = target;
+  state_[env_id].mask |= 1u << joint;
 }
 
-void Skill::ClearGoals(int env_id) { mask_[env_id] = 0; }
+void Skill::ClearGoals(int env_id) { state_[env_id].mask = 0; }
 
-void Skill::SetStyle(int env_id, int style) { style_[env_id] = style; }
+void Skill::SetStyle(int env_id, int style) { state_[env_id].style = style; }
 
 void Skill::SetStyleVector(int env_id, const Eigen::VectorXf& z) {
   SIMS_CHECK(z.size() == 0 || z.size() == kStyleDim);
-  style_vector_[env_id] = z;
+  state_[env_id].style_vector = z;
 }
 
 bool Skill::BeginInstruction(const sim::EnvView&, const InstructionTarget&) { return false; }
@@ -108,12 +103,12 @@ void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
     init->history.clear();
     for (const auto& h : ref.history) init->history.push_back(move(h));
     init->reference = true;
-    style_[env_id] = clip;
+    state_[env_id].style = clip;
   } else if (lib && !clips.empty()) {
     // Default init still pursues some clip's style (SIMS conditions every episode on a z).
-    style_[env_id] = clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+    state_[env_id].style = clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
   } else {
-    style_[env_id] = -1;
+    state_[env_id].style = -1;
   }
 }
 
@@ -123,8 +118,8 @@ void Skill::Observe(const sim::EnvView& view, float* out) const {
   const Eigen::Quaterniond h_inv = sim::HeadingInverse(b.rot[sim::kPelvis]);
   float* o = out;
   for (int j = 0; j < sim::kNumContactJoints; ++j, o += 4) {
-    if (mask_[i] & (1u << j)) {
-      const Eigen::Vector3d d = h_inv * (goals_[i][j] - sim::ContactJointPosition(b, j));
+    if (state_[i].mask & (1u << j)) {
+      const Eigen::Vector3d d = h_inv * (state_[i].goals[j] - sim::ContactJointPosition(b, j));
       o[0] = static_cast<float>(d.x());
       o[1] = static_cast<float>(d.y());
       o[2] = static_cast<float>(d.z());
@@ -139,37 +134,38 @@ void Skill::Observe(const sim::EnvView& view, float* out) const {
   o += heightmap_->size();
   const Eigen::VectorXf* z = nullptr;
   if (config_.style_conditioned) {
-    if (style_vector_[i].size() == kStyleDim)
-      z = &style_vector_[i];
-    else if (context_.styles && style_[i] >= 0 && style_[i] < context_.styles->size())
-      z = &context_.styles->z(style_[i]);
+    const SkillState& st = state_[i];
+    if (st.style_vector.size() == kStyleDim)
+      z = &st.style_vector;
+    else if (context_.styles && st.style >= 0 && st.style < context_.styles->size())
+      z = &context_.styles->z(st.style);
   }
   for (int k = 0; k < kStyleDim; ++k) o[k] = z ? (*z)[k] : 0.0f;
 }
 
 std::vector<double> Skill::SaveEnvState(int env_id) const {
-  std::vector<double> s;
-  for (int j = 0; j < sim::kNumContactJoints; ++j)
-    for (int k = 0; k < 3; ++k) s.push_back(goals_[env_id][j][k]);
-  s.push_back(mask_[env_id]);
-  s.push_back(style_[env_id]);
-  const auto extra = SaveSkillState(env_id);
-  s.insert(s.end(), extra.begin(), extra.end());
-  return s;
+  std::vector<double> out;
+  StateArchive a(&out);
+  // Writing only reads the fields: one non-const Serialize serves both directions.
+  auto* self = const_cast<Skill*>(this);
+  self->state_[env_id].Serialize(&a, context_.motions ? context_.motions->num_clips() : 0);
+  self->SerializeSkillState(env_id, &a);
+  return out;
 }
 
 void Skill::LoadEnvState(int env_id, const std::vector<double>& s) {
   StateReader r(name() + " skill state", s.data(), s.size());
-  for (int j = 0; j < sim::kNumContactJoints; ++j)
-    for (int k = 0; k < 3; ++k) goals_[env_id][j][k] = r.Real("goal");
-  mask_[env_id] = static_cast<uint32_t>(r.Int("mask", 0, (1ll << sim::kNumContactJoints) - 1));
-  const long long clips = context_.motions ? context_.motions->num_clips() : 0;
-  style_[env_id] = static_cast<int>(r.Int("style", -1, clips - 1));
-  LoadSkillState(env_id, s.data() + r.used(), r.left());
+  StateArchive a(&r);
+  SkillState st = state_[env_id];
+  st.Serialize(&a, context_.motions ? context_.motions->num_clips() : 0);
+  // The derived state may depend on the base (walk: the style clip's posture), so the base is
+  // in place first; a throw later leaves a half-read env, which BatchedEnv::LoadState undoes.
+  state_[env_id] = st;
+  SerializeSkillState(env_id, &a);
+  r.ExpectEnd();
 }
 
-std::vector<double> Skill::SaveSkillState(int) const { return {}; }
-void Skill::LoadSkillState(int, const double*, size_t) {}
+void Skill::SerializeSkillState(int, StateArchive*) {}
 
 namespace {
 

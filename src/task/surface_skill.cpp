@@ -67,7 +67,7 @@ double SurfaceSkill::UpdateGoals(int i, const sim::BodyStates& b, double* succes
 void SurfaceSkill::OnReset(const sim::EnvView& view, Rng&) {
   double d = 0;
   UpdateGoals(view.env_id, *view.bodies, &d);
-  error_[view.env_id] = d;
+  env_[view.env_id].error = d;
 }
 
 sim::TaskStepResult SurfaceSkill::Step(const sim::EnvView& view) {
@@ -80,12 +80,8 @@ bool SurfaceSkill::ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) 
   return FurnitureClipInit(env_id, lateral_[env_id], rng, init);
 }
 
-void SurfaceSkill::SaveTaskState(int env_id, std::vector<double>* out) const {
-  out->push_back(lateral_[env_id]);
-}
-
-void SurfaceSkill::LoadTaskState(int env_id, StateReader* r) {
-  lateral_[env_id] = r->Real("lateral");
+void SurfaceSkill::SerializeTaskState(int env_id, StateArchive* a) {
+  a->Real("lateral", &lateral_[env_id]);
 }
 
 }  // namespace sims::task

@@ -304,6 +304,44 @@ TEST(EnvStateTest, SaveLoadContinuesBitExactly) {
   EXPECT_THROW(b.LoadState(snapshot.substr(0, snapshot.size() / 2)), Error);
 }
 
+// Checkpoints written before the stats were count-prefixed ("SIM2": EnvStats as one raw struct,
+// 6 counters, or 7 once `recoveries` was added) must still resume: the committed policies' training
+// checkpoints are of that kind.
+TEST(EnvStateTest, OlderSnapshotsWithRawStatsStillLoad) {
+  EnvConfig c = SmallConfig(3, 2);
+  BatchedEnv a(MakeHumanoid(), c);
+  Rng rng(11);
+  for (int t = 0; t < 12; ++t) a.Step(RandomActions(rng, 3, 0.4).data());
+  ASSERT_EQ(a.stats().recoveries, 0);
+  const std::string sim3 = a.SaveState();
+  const size_t stats_at = sizeof(uint32_t) + 5 * sizeof(int);  // the count, then 7 counters
+  int count = 0;
+  std::memcpy(&count, sim3.data() + stats_at, sizeof(count));
+  ASSERT_EQ(count, 7);
+  const uint32_t sim2_magic = 0x53494D32;
+  std::string sim2_seven = sim3;
+  std::memcpy(sim2_seven.data(), &sim2_magic, sizeof(sim2_magic));
+  sim2_seven.erase(stats_at, sizeof(int));
+  std::string sim2_six = sim2_seven;
+  sim2_six.erase(stats_at + 6 * sizeof(int64_t), sizeof(int64_t));
+  for (const std::string* old : {&sim2_six, &sim2_seven}) {
+    EnvConfig other = c;
+    other.seed = 99;
+    BatchedEnv b(MakeHumanoid(), other);
+    b.LoadState(*old);
+    EXPECT_EQ(b.SaveState(), sim3);  // resaved as SIM3, nothing lost
+    EXPECT_EQ(b.stats().episodes, a.stats().episodes);
+  }
+  // A SIM3 snapshot claiming 8 counters is refused, and leaves the env as it was.
+  BatchedEnv b(MakeHumanoid(), c);
+  const std::string before = b.SaveState();
+  std::string eight = sim3;
+  count = 8;
+  std::memcpy(eight.data() + stats_at, &count, sizeof(count));
+  EXPECT_THROW(b.LoadState(eight), Error);
+  EXPECT_EQ(b.SaveState(), before);
+}
+
 // Fuzzer findings (tools/fuzz.sh env_state): a snapshot rejected part way through left the
 // first envs overwritten, and a task-state count past the end of the data asked for that many
 // doubles (std::length_error / bad_alloc instead of an input error).
@@ -327,9 +365,10 @@ TEST(EnvStateTest, RejectedSnapshotLeavesTheEnvAsItWas) {
   EXPECT_THROW(b.LoadState(huge), Error);
   EXPECT_EQ(b.SaveState(), before);
   // Env 0's step count past the episode length (INT_MAX overflowed at the next step): the
-  // header (magic, num_envs, nq, nv, nu, amp_history), the stats, the RNG, then the count.
+  // header (magic, num_envs, nq, nv, nu, amp_history), the stats (count-prefixed), the RNG,
+  // then the count.
   std::string late = snapshot;
-  const size_t at = sizeof(uint32_t) + 5 * sizeof(int) + sizeof(EnvStats) + 4 * sizeof(uint64_t);
+  const size_t at = sizeof(uint32_t) + 6 * sizeof(int) + sizeof(EnvStats) + 4 * sizeof(uint64_t);
   int progress = 0;
   std::memcpy(&progress, late.data() + at, sizeof(progress));
   EXPECT_EQ(progress, a.progress(0));

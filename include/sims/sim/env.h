@@ -166,7 +166,8 @@ class BatchedEnv {
  private:
   struct Slot;
   void StepEnv(int i, const float* action);
-  void ApplyState(const std::string& state);
+  // `sim2_stats`: counters in a SIM2 snapshot's stats (6 or 7; see env.cpp).
+  void ApplyState(const std::string& state, int sim2_stats);
   void ResetSlot(int i);
   void RefreshObservation(int i, bool fill_history);
   bool Unstable(int i) const;

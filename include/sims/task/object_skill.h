@@ -21,7 +21,6 @@
 #include "sims/scene/mesh.h"
 #include "sims/task/contact_reward.h"
 #include "sims/task/skill.h"
-#include "sims/task/state_reader.h"
 
 namespace sims::task {
 
@@ -95,6 +94,21 @@ bool ClipFurnitureFrame(const motion::MotionClip& clip, const ObjectGeometry& g,
                         double lateral_offset, Eigen::Vector2d* p_clip, double* yaw_clip,
                         double* dz);
 
+/// The per-env data of an object skill (snapshotted in this order).
+struct ObjectState {
+  int object = 0;    ///< Index into objects() of the env's object.
+  int hold = 0;      ///< Steps the success condition has held.
+  double error = 0;  ///< Success-test distance at the last step (m).
+  Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< The episode's fixed target (world).
+  Eigen::Vector2d anchor_W = Eigen::Vector2d::Zero();  ///< Its far anchor (world xy).
+  double level = 1;                                    ///< Spawn-curriculum level in [0, 1].
+  bool started = false;                                ///< An episode ran.
+  bool reference = false;                              ///< It began from a clip state.
+
+  /// Lists the fields; `num_objects` bounds `object`.
+  void Serialize(StateArchive* a, int num_objects);
+};
+
 /// Base class of the object skills (see the file comment).
 class ObjectSkill : public Skill {
  public:
@@ -115,27 +129,27 @@ class ObjectSkill : public Skill {
   /// Geometry of the objects this skill uses (indices into the scene's objects in `object`).
   const std::vector<ObjectGeometry>& objects() const { return objects_; }
   /// Index into objects() of env i's current object.
-  int object(int env_id) const { return object_[env_id]; }
+  int object(int env_id) const { return env_[env_id].object; }
   /// Geometry of env i's current object.
-  const ObjectGeometry& geometry(int env_id) const { return objects_[object_[env_id]]; }
+  const ObjectGeometry& geometry(int env_id) const { return objects_[env_[env_id].object]; }
   /// Makes env i use objects()[k] at its following resets (−1 = random again); FSM / eval.
   void SetObjectOverride(int env_id, int k);
   /// The distance the success test compares with its threshold at the last step (m).
-  double goal_error(int env_id) const { return error_[env_id]; }
+  double goal_error(int env_id) const { return env_[env_id].error; }
   /// goal_error(view.env_id).
-  double goal_error(const sim::EnvView& view) const override { return error_[view.env_id]; }
+  double goal_error(const sim::EnvView& view) const override { return env_[view.env_id].error; }
   /// Consecutive steps the success condition has held.
-  int hold(int env_id) const { return hold_[env_id]; }
+  int hold(int env_id) const { return env_[env_id].hold; }
   /// Env i's fixed episode target (world): where the pelvis or hand should end.
-  const Eigen::Vector3d& target(int env_id) const { return target_W_[env_id]; }
+  const Eigen::Vector3d& target(int env_id) const { return env_[env_id].target_W; }
   /// Env i's far anchor (world xy): the stand point the approach reward leads to.
-  const Eigen::Vector2d& anchor(int env_id) const { return anchor_W_[env_id]; }
+  const Eigen::Vector2d& anchor(int env_id) const { return env_[env_id].anchor_W; }
   /// Env i's spawn-curriculum level in [0, 1] (1 = the full spawn distance range).
-  double spawn_level(int env_id) const { return level_[env_id]; }
+  double spawn_level(int env_id) const { return env_[env_id].level; }
   /// Sets env i's spawn level (tests, tools).
   void SetSpawnLevel(int env_id, double level);
   /// Whether env i's episode began from a reference (clip) state.
-  bool reference_start(int env_id) const { return reference_[env_id] != 0; }
+  bool reference_start(int env_id) const { return env_[env_id].reference; }
   /// Latest start time (s) of reference starts from library clip `clip` (−1: not used).
   double pre_contact_time(int clip) const;
   /// Net contact force on the humanoid (N) after the last physics step of `view`.
@@ -168,13 +182,10 @@ class ObjectSkill : public Skill {
   virtual bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init);
   /// Standing at a random heading, spawn_min..spawn_max beyond the object's footprint.
   virtual void DefaultInit(int env_id, Rng& rng, sim::InitialState* init);
-  /// Per-env state of the derived skill for snapshots.
-  virtual void SaveTaskState(int env_id, std::vector<double>* out) const;
-  /// Restores SaveTaskState() output, reading (and checking) its values from `r`.
-  virtual void LoadTaskState(int env_id, StateReader* r);
+  /// Writes or reads the derived skill's own per-env state (after the ObjectState).
+  virtual void SerializeTaskState(int env_id, StateArchive* archive);
 
-  std::vector<double> SaveSkillState(int env_id) const final;
-  void LoadSkillState(int env_id, const double* data, size_t size) final;
+  void SerializeSkillState(int env_id, StateArchive* archive) final;
 
   /// A free floor point beyond object g's footprint, within the spawn arc and env i's
   /// curriculum range of spawn distances.
@@ -198,13 +209,9 @@ class ObjectSkill : public Skill {
   sim::TaskStepResult Finish(const sim::EnvView& view, double reward, bool success);
 
   std::vector<ObjectGeometry> objects_;
-  std::vector<int> object_, hold_, override_;
-  std::vector<double> error_;
-  std::vector<Eigen::Vector3d> target_W_;
-  std::vector<Eigen::Vector2d> anchor_W_;
-  std::vector<double> level_;                 // spawn-curriculum level
-  std::vector<uint8_t> started_, reference_;  // an episode ran; it began from a clip
-  std::vector<double> pre_contact_;           // per library clip (−1: not a reference clip)
+  std::vector<ObjectState> env_;     // per env
+  std::vector<int> override_;        // per env: SetObjectOverride (a setting, not snapshotted)
+  std::vector<double> pre_contact_;  // per library clip (−1: not a reference clip)
 };
 
 /// A random position (m) along a wide seat (sofas) so envs do not all use the middle; 0 for

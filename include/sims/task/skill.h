@@ -29,6 +29,7 @@
 #include "sims/task/getup/getup_params.h"
 #include "sims/task/object_params.h"
 #include "sims/task/sit/sit_params.h"
+#include "sims/task/skill_state.h"
 #include "sims/task/styles.h"
 #include "sims/task/walk/walk_params.h"
 
@@ -104,6 +105,25 @@ struct SkillContext {
 
 struct ContactStep;
 
+/// The per-env data every skill has (the skill object itself is shared by all envs).
+struct SkillState {
+  /// Contact goals (world frame) of the 15 contact joints; only those in `mask` are active.
+  std::array<Eigen::Vector3d, sim::kNumContactJoints> goals;
+  uint32_t mask = 0;  ///< Bit j: goal j is active.
+  int style = -1;     ///< Library clip whose style z the policy sees (−1 = none).
+  /// An explicit z (a caption's embedding) overriding `style`; empty = none. Set by the FSM
+  /// at every instruction, so it is not part of a snapshot.
+  Eigen::VectorXf style_vector;
+
+  SkillState() { goals.fill(Eigen::Vector3d::Zero()); }
+  /// Lists the snapshotted fields; `num_clips` bounds `style`.
+  void Serialize(StateArchive* a, long long num_clips) {
+    for (Eigen::Vector3d& g : goals) a->Reals("goal", &g);
+    a->Int("mask", &mask, 0, (1ll << sim::kNumContactJoints) - 1);
+    a->Int("style", &style, -1, num_clips - 1);
+  }
+};
+
 /// What a story instruction asks of a skill in the scene the env simulates (FSM).
 struct InstructionTarget {
   int object = -1;                                  ///< Scene object index (−1 = none).
@@ -128,14 +148,14 @@ class Skill : public sim::TaskHook {
   std::vector<sim::ObsSegment> obs_segments() const override;
   void SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) override;
   void Observe(const sim::EnvView& view, float* out) const override;
-  int style_id(int env_id) const override { return style_[env_id]; }
+  int style_id(int env_id) const override { return state_[env_id].style; }
   std::vector<double> SaveEnvState(int env_id) const override;
   void LoadEnvState(int env_id, const std::vector<double>& state) override;
 
   /// The goal of contact joint j in env i (world frame) and whether it is active.
-  const Eigen::Vector3d& goal(int env_id, int joint) const { return goals_[env_id][joint]; }
+  const Eigen::Vector3d& goal(int env_id, int joint) const { return state_[env_id].goals[joint]; }
   /// Bitmask of active contact joints of env i.
-  uint32_t goal_mask(int env_id) const { return mask_[env_id]; }
+  uint32_t goal_mask(int env_id) const { return state_[env_id].mask; }
   /// Sets/clears the goal of contact joint j (world frame).
   void SetGoal(int env_id, int joint, const Eigen::Vector3d& target);
   /// Clears all goals of env i.
@@ -168,20 +188,16 @@ class Skill : public sim::TaskHook {
   const SkillContext& context() const { return context_; }
 
  protected:
-  /// Skill-specific per-env numbers to snapshot (appended after the base state).
-  virtual std::vector<double> SaveSkillState(int env_id) const;
-  /// Restores SaveSkillState() output.
-  virtual void LoadSkillState(int env_id, const double* data, size_t size);
+  /// Writes or reads env `env_id`'s own skill state (after the base SkillState in a snapshot).
+  /// Reading may throw part way: the caller then restores the whole environment.
+  virtual void SerializeSkillState(int env_id, StateArchive* archive);
   /// Clips eligible for reference init of this skill (default: all library clips).
   virtual const std::vector<int>& ReferenceClips() const { return reference_clips_; }
 
   SkillConfig config_;
   SkillContext context_;
   std::unique_ptr<scene::HeightmapSampler> heightmap_;
-  std::vector<std::array<Eigen::Vector3d, sim::kNumContactJoints>> goals_;
-  std::vector<uint32_t> mask_;
-  std::vector<int> style_;
-  std::vector<Eigen::VectorXf> style_vector_;
+  std::vector<SkillState> state_;  // per env
   std::vector<int> reference_clips_;
 };
 

@@ -58,13 +58,12 @@ class SurfaceSkill : public ObjectSkill {
   double ClipContactTime(int clip) const override;
   void SampleTask(int env_id, Rng& rng) override;
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
-  void SaveTaskState(int env_id, std::vector<double>* out) const override;
-  void LoadTaskState(int env_id, StateReader* r) override;
+  void SerializeTaskState(int env_id, StateArchive* archive) override;
 
  private:
   SurfaceTask task_;
   std::vector<std::vector<int>> extra_parts_;  // per object slot, fixed by the config
-  std::vector<double> lateral_;
+  std::vector<double> lateral_;  // per env: offset along a wide seat (its whole per-env state)
 };
 
 }  // namespace sims::task

@@ -97,9 +97,10 @@ void GetUpParams::Validate() const {
 GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
     : ObjectSkill(config, context) {
   const int n = context.num_envs;
-  phase_.assign(n, kFeetPhase);
-  start_.assign(n, kFallStart);
-  stand_.assign(n, Eigen::Vector2d::Zero());
+  GetUpState initial;
+  initial.phase = kFeetPhase;
+  initial.start = kFallStart;
+  getup_.assign(n, initial);
   reference_clips_.clear();
   if (context.motions) {
     // Clips without furniture parameters get up from the floor.
@@ -127,7 +128,7 @@ uint32_t GetUpSkill::contact_body_mask() const {
 }
 
 std::string GetUpSkill::start_label(int env_id) const {
-  switch (start_[env_id]) {
+  switch (getup_[env_id].start) {
     case kSeatStart:
       return "seat";
     case kBedStart:
@@ -196,7 +197,7 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
     PlaceReference(i, clip, t, placement, init);
     // Lying on the floor is a fall to the env: the same grace as a fall state.
     init->termination_grace_steps = config_.getup.fall_grace_steps;
-    start_[i] = kFloorClipStart;
+    getup_[i].start = kFloorClipStart;
     return true;
   }
   ClipPlacement placement;
@@ -205,12 +206,12 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   if (clip < 0) return false;
   const double t = rng.Uniform(0.0, 0.25 * context_.motions->clip(clip).duration());
   PlaceReference(i, clip, t, placement, init);
-  start_[i] = geometry(i).mattress >= 0 ? kBedStart : kSeatStart;
+  getup_[i].start = geometry(i).mattress >= 0 ? kBedStart : kSeatStart;
   return true;
 }
 
 void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
-  start_[i] = kFallStart;
+  getup_[i].start = kFallStart;
   const auto& states = *fall_states_;
   const FallState& f = states[rng.UniformInt(static_cast<int64_t>(states.size()))];
   ClipPlacement placement;
@@ -222,18 +223,18 @@ void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
   init->reference = false;
   init->termination_grace_steps = config_.getup.fall_grace_steps;
   const auto& clips = ReferenceClips();
-  style_[i] = clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+  SetStyle(i, clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))]);
 }
 
 void GetUpSkill::SetGetUpGoals(int i, const sim::BodyStates& b, double* feet_sq, double* feet_max) {
   ClearGoals(i);
-  SetGoal(i, sim::kCjPelvis, {stand_[i].x(), stand_[i].y(), sim::kDefaultRootHeight});
+  SetGoal(i, sim::kCjPelvis, {getup_[i].stand.x(), getup_[i].stand.y(), sim::kDefaultRootHeight});
   *feet_sq = 0;
   *feet_max = 0;
-  if (phase_[i] != kFeetPhase) return;
+  if (getup_[i].phase != kFeetPhase) return;
   for (int j : {sim::kCjLeftFoot, sim::kCjRightFoot}) {
     const Eigen::Vector3d x = sim::ContactJointPosition(b, j);
-    const Eigen::Vector3d g = FootTarget(stand_[i], x);
+    const Eigen::Vector3d g = FootTarget(getup_[i].stand, x);
     SetGoal(i, j, g);
     *feet_sq += (g - x).squaredNorm();
     *feet_max = std::max(*feet_max, (g - x).norm());
@@ -243,30 +244,30 @@ void GetUpSkill::SetGetUpGoals(int i, const sim::BodyStates& b, double* feet_sq,
 bool GetUpSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
   if (!ObjectSkill::BeginInstruction(view, target)) return false;
   const int i = view.env_id;
-  start_[i] = target.object < 0 ? kFallStart : kSeatStart;  // no object: a fall
+  getup_[i].start = target.object < 0 ? kFallStart : kSeatStart;  // no object: a fall
   StartGetUp(i, *view.bodies);
   if (target.has_point) {
-    stand_[i] = target.point.head<2>();
+    getup_[i].stand = target.point.head<2>();
     double sq = 0, mx = 0;
     SetGetUpGoals(i, *view.bodies, &sq, &mx);
   }
-  error_[i] =
+  env_[i].error =
       std::max(config_.getup.standing_pelvis_height - view.bodies->pos[sim::kPelvis].z(), 0.0);
   return true;
 }
 
 void GetUpSkill::StartGetUp(int i, const sim::BodyStates& b) {
   const Eigen::Vector2d pelvis = b.pos[sim::kPelvis].head<2>();
-  stand_[i] = pelvis;
+  getup_[i].stand = pelvis;
   const ObjectGeometry& g = geometry(i);
   if (!floor_start(i) && !g.stand_points.empty()) {
     double best = std::numeric_limits<double>::infinity();
     for (const auto& s : g.stand_points)
       if ((s.head<2>() - pelvis).squaredNorm() < best)
-        best = (s.head<2>() - pelvis).squaredNorm(), stand_[i] = s.head<2>();
+        best = (s.head<2>() - pelvis).squaredNorm(), getup_[i].stand = s.head<2>();
   }
-  phase_[i] = kFeetPhase;
-  hold_[i] = 0;
+  getup_[i].phase = kFeetPhase;
+  env_[i].hold = 0;
   double sq = 0, mx = 0;
   SetGetUpGoals(i, b, &sq, &mx);
 }
@@ -274,7 +275,7 @@ void GetUpSkill::StartGetUp(int i, const sim::BodyStates& b) {
 void GetUpSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
   StartGetUp(i, *view.bodies);
-  error_[i] =
+  env_[i].error =
       std::max(config_.getup.standing_pelvis_height - view.bodies->pos[sim::kPelvis].z(), 0.0);
 }
 
@@ -287,32 +288,28 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
   double sq = 0, mx = 0;
   SetGetUpGoals(i, b, &sq, &mx);
   double r = 0;
-  if (phase_[i] == kFeetPhase) {
-    r = 0.5 * ContactReward(stand_[i], root, vel, facing, config_.target_speed, sq);
+  if (getup_[i].phase == kFeetPhase) {
+    r = 0.5 * ContactReward(getup_[i].stand, root, vel, facing, config_.target_speed, sq);
     if (mx < config_.object.contact_success_threshold) {
-      phase_[i] = kRisePhase;
+      getup_[i].phase = kRisePhase;
       SetGetUpGoals(i, b, &sq, &mx);
     }
   } else {
     const double up_z = (b.rot[sim::kPelvis] * Eigen::Vector3d::UnitZ()).z();
-    r = 0.5 +
-        0.5 * RiseReward(b.pos[sim::kPelvis].z(), up_z, stand_[i], b.pos[sim::kPelvis].head<2>());
+    r = 0.5 + 0.5 * RiseReward(b.pos[sim::kPelvis].z(), up_z, getup_[i].stand,
+                               b.pos[sim::kPelvis].head<2>());
   }
-  error_[i] = std::max(config_.getup.standing_pelvis_height - b.pos[sim::kPelvis].z(), 0.0);
+  env_[i].error = std::max(config_.getup.standing_pelvis_height - b.pos[sim::kPelvis].z(), 0.0);
   return Finish(view, r, StandingClear(view));
 }
 
-void GetUpSkill::SaveTaskState(int i, std::vector<double>* out) const {
-  out->insert(out->end(), {static_cast<double>(phase_[i]), static_cast<double>(start_[i]),
-                           stand_[i].x(), stand_[i].y()});
+void GetUpState::Serialize(StateArchive* a) {
+  a->Int("phase", &phase, GetUpSkill::kFeetPhase, GetUpSkill::kRisePhase);
+  a->Int("start", &start, GetUpSkill::kSeatStart, GetUpSkill::kFallStart);
+  a->Reals("stand", &stand);
 }
 
-void GetUpSkill::LoadTaskState(int i, StateReader* r) {
-  phase_[i] = static_cast<int>(r->Int("phase", kFeetPhase, kRisePhase));
-  start_[i] = static_cast<int>(r->Int("start", kSeatStart, kFallStart));
-  stand_[i].x() = r->Real("stand");
-  stand_[i].y() = r->Real("stand");
-}
+void GetUpSkill::SerializeTaskState(int i, StateArchive* a) { getup_[i].Serialize(a); }
 
 SkillInfo GetUpSkillInfo() {
   SkillInfo info = BuiltinSkillInfo("getup");

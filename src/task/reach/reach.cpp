@@ -78,7 +78,7 @@ void ReachSkill::SetTarget(int i, int hand_joint, const Eigen::Vector3d& target)
   const Eigen::Vector3d anchor =
       g.ToWorld(Eigen::Vector3d(g.local.max.x() + kStandDistance, l.y(), 0.0));
   SetEpisodeTarget(i, target, anchor.head<2>());
-  hold_[i] = 0;
+  env_[i].hold = 0;
   ClearGoals(i);
   SetGoal(i, hand_joint, target);
 }
@@ -91,7 +91,7 @@ bool ReachSkill::BeginInstruction(const sim::EnvView& view, const InstructionTar
     SetTarget(i, hand, target.point);
     return true;
   }
-  const Bands& bands = candidates_[object_[i]];
+  const Bands& bands = candidates_[env_[i].object];
   int band = target.height == "low" ? 0 : target.height == "high" ? 2 : 1;
   if (bands[band].empty()) band = !bands[1].empty() ? 1 : !bands[0].empty() ? 0 : 2;
   if (bands[band].empty()) return false;
@@ -104,7 +104,7 @@ bool ReachSkill::BeginInstruction(const sim::EnvView& view, const InstructionTar
 }
 
 void ReachSkill::SampleTask(int i, Rng& rng) {
-  const Bands& bands = candidates_[object_[i]];
+  const Bands& bands = candidates_[env_[i].object];
   std::vector<int> usable;
   for (int b = 0; b < 3; ++b)
     if (!bands[b].empty()) usable.push_back(b);
@@ -141,7 +141,7 @@ bool ReachSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
 
 void ReachSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
-  error_[i] = (target(i) - sim::ContactJointPosition(*view.bodies, hand_[i])).norm();
+  env_[i].error = (target(i) - sim::ContactJointPosition(*view.bodies, hand_[i])).norm();
 }
 
 sim::TaskStepResult ReachSkill::Step(const sim::EnvView& view) {
@@ -150,12 +150,8 @@ sim::TaskStepResult ReachSkill::Step(const sim::EnvView& view) {
   return ContactRewardStep(view, d2, std::sqrt(d2));
 }
 
-void ReachSkill::SaveTaskState(int i, std::vector<double>* out) const {
-  out->push_back(static_cast<double>(hand_[i]));
-}
-
-void ReachSkill::LoadTaskState(int i, StateReader* r) {
-  hand_[i] = static_cast<int>(r->Int("hand", 0, sim::kNumContactJoints - 1));
+void ReachSkill::SerializeTaskState(int i, StateArchive* a) {
+  a->Int("hand", &hand_[i], 0, sim::kNumContactJoints - 1);
 }
 
 SkillInfo ReachSkillInfo() {

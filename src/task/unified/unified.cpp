@@ -50,10 +50,7 @@ std::vector<std::string> UnifiedCategories() {
 UnifiedSkill::UnifiedSkill(const SkillConfig& config, const SkillContext& context)
     : ObjectSkill(config, context) {
   const int n = context.num_envs;
-  steps_.assign(n, {});
-  step_.assign(n, 0);
-  still_.assign(n, 0);
-  completed_.assign(n, 0);
+  unified_.assign(n, UnifiedState{});
   CollectObjects("object");
 }
 
@@ -75,9 +72,9 @@ void UnifiedSkill::Observe(const sim::EnvView& view, float* out) const {
   float* o = out + Skill::obs_dim();
   std::fill(o, o + kContactPairObsDim, 0.0f);
   const int i = view.env_id;
-  if (steps_[i].empty()) return;
+  if (unified_[i].steps.empty()) return;
   const Eigen::Quaterniond h_inv = sim::HeadingInverse(view.bodies->rot[sim::kPelvis]);
-  for (const auto& p : steps_[i][step_[i]].pairs) {
+  for (const auto& p : unified_[i].steps[unified_[i].step].pairs) {
     if (p.type == ContactType::kNone) continue;
     o[p.joint] = p.type == ContactType::kContact ? 1.0f : -1.0f;
     const Eigen::Vector3d d = h_inv * p.direction;
@@ -164,18 +161,18 @@ void UnifiedSkill::SetPlan(const std::vector<ContactStep>& steps) {
 }
 
 void UnifiedSkill::SampleTask(int i, Rng& rng) {
-  step_[i] = still_[i] = completed_[i] = 0;
+  unified_[i].step = unified_[i].still = unified_[i].completed = 0;
   if (plan_.empty()) {
-    steps_[i] = RandomChain(object_[i], rng);
+    unified_[i].steps = RandomChain(env_[i].object, rng);
     return;
   }
-  steps_[i] = plan_;
-  if (const int k = SlotOf(plan_.front().object); k >= 0) object_[i] = k;
+  unified_[i].steps = plan_;
+  if (const int k = SlotOf(plan_.front().object); k >= 0) env_[i].object = k;
 }
 
 void UnifiedSkill::UpdateGoals(int i, const std::array<JointPair, sim::kNumContactJoints>& pairs) {
   ClearGoals(i);
-  const ContactStep& st = steps_[i][step_[i]];
+  const ContactStep& st = unified_[i].steps[unified_[i].step];
   if (st.walking()) {
     SetGoal(i, sim::kCjPelvis, st.stand_point);
     return;
@@ -206,10 +203,10 @@ bool UnifiedSkill::BeginInstruction(const sim::EnvView& view, const InstructionT
   const int i = view.env_id;
   const int k = SlotOf(step.object);
   if (k < 0) return false;
-  object_[i] = k;
-  hold_[i] = 0;
-  steps_[i] = {step};
-  step_[i] = still_[i] = completed_[i] = 0;
+  env_[i].object = k;
+  env_[i].hold = 0;
+  unified_[i].steps = {step};
+  unified_[i].step = unified_[i].still = unified_[i].completed = 0;
   Rng unused(0);
   OnReset(view, unused);
   return true;
@@ -217,26 +214,27 @@ bool UnifiedSkill::BeginInstruction(const sim::EnvView& view, const InstructionT
 
 void UnifiedSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
-  const auto pairs = ResolveStep(steps_[i][step_[i]], *context_.scene, *view.bodies);
+  const auto pairs =
+      ResolveStep(unified_[i].steps[unified_[i].step], *context_.scene, *view.bodies);
   UpdateGoals(i, pairs);
-  error_[i] = StepContactError(steps_[i][step_[i]], pairs, *view.bodies);
+  env_[i].error = StepContactError(unified_[i].steps[unified_[i].step], pairs, *view.bodies);
 }
 
 sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
   const sim::BodyStates& b = *view.bodies;
-  const ContactStep& st = steps_[i][step_[i]];
+  const ContactStep& st = unified_[i].steps[unified_[i].step];
   auto pairs = ResolveStep(st, *context_.scene, b);
   const StepReward sr =
       UniHsiStepReward(pairs, view.pose->root_pos, view.pose->root_lin_vel, FacingOf(*view.pose),
                        st.stand_point, config_.target_speed);
   double max_l1 = 0;
   for (const auto& v : b.lin_vel) max_l1 = std::max(max_l1, v.cwiseAbs().sum());
-  still_[i] = max_l1 < kStillVelocityL1 ? still_[i] + 1 : 0;
+  unified_[i].still = max_l1 < kStillVelocityL1 ? unified_[i].still + 1 : 0;
   const bool big_force =
       config_.object.max_contact_force > 0 && ContactForce(view) > config_.object.max_contact_force;
-  const StepCheck check = CheckUniHsiStep(st.types(), sr, big_force, still_[i]);
-  error_[i] = StepContactError(st, pairs, b);
+  const StepCheck check = CheckUniHsiStep(st.types(), sr, big_force, unified_[i].still);
+  env_[i].error = StepContactError(st, pairs, b);
 
   sim::TaskStepResult r;
   r.reward = static_cast<float>(sr.reward);
@@ -244,11 +242,11 @@ sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
     r.terminate = true;
   } else if (check.advance) {
     r.success = true;
-    ++completed_[i];
-    if (step_[i] + 1 < static_cast<int>(steps_[i].size())) {
-      ++step_[i];
-      still_[i] = 0;
-      pairs = ResolveStep(steps_[i][step_[i]], *context_.scene, b);
+    ++unified_[i].completed;
+    if (unified_[i].step + 1 < static_cast<int>(unified_[i].steps.size())) {
+      ++unified_[i].step;
+      unified_[i].still = 0;
+      pairs = ResolveStep(unified_[i].steps[unified_[i].step], *context_.scene, b);
     } else {
       r.truncate = true;
       r.completed = true;  // the whole chain passed
@@ -260,59 +258,46 @@ sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
   return r;
 }
 
-void UnifiedSkill::SaveTaskState(int i, std::vector<double>* out) const {
-  out->push_back(static_cast<double>(step_[i]));
-  out->push_back(static_cast<double>(still_[i]));
-  out->push_back(static_cast<double>(completed_[i]));
-  out->push_back(static_cast<double>(steps_[i].size()));
-  for (const auto& s : steps_[i]) {
-    out->insert(out->end(), {static_cast<double>(s.object), s.stand_point.x(), s.stand_point.y(),
-                             s.stand_point.z(), static_cast<double>(s.pairs.size())});
-    for (const auto& p : s.pairs)
-      out->insert(
-          out->end(),
-          {static_cast<double>(p.joint), static_cast<double>(static_cast<int>(p.type)),
-           static_cast<double>(p.object), static_cast<double>(p.part),
-           static_cast<double>(p.target_joint), p.direction.x(), p.direction.y(), p.direction.z()});
+void UnifiedState::Serialize(StateArchive* a, const scene::Scene& scene) {
+  constexpr long long kMaxInt = std::numeric_limits<int>::max();
+  const long long objects = static_cast<long long>(scene.objects.size());
+  a->Int("step", &step, 0, kMaxInt);
+  a->Int("still", &still, 0, kMaxInt);
+  a->Int("completed", &completed, 0, kMaxInt);
+  // A step takes at least 5 values: no count beyond what is left.
+  long long n = static_cast<long long>(steps.size());
+  a->Int("steps", &n, 1, a->loading() ? static_cast<long long>(a->left() / 5) : kMaxInt);
+  if (a->loading() && step >= n)
+    ThrowInputError("unified skill state", "step", "a step of the chain", std::to_string(step));
+  if (a->loading()) steps.assign(static_cast<size_t>(n), ContactStep{});
+  for (ContactStep& s : steps) {
+    a->Int("object", &s.object, -1, objects - 1);
+    a->Reals("stand_point", &s.stand_point);
+    // A pair takes 8 values.
+    long long pairs = static_cast<long long>(s.pairs.size());
+    a->Int("pairs", &pairs, 0, a->loading() ? static_cast<long long>(a->left() / 8) : kMaxInt);
+    if (a->loading()) s.pairs.assign(static_cast<size_t>(pairs), ContactPairSpec{});
+    for (ContactPairSpec& p : s.pairs) {
+      a->Int("joint", &p.joint, 0, sim::kNumContactJoints - 1);
+      int type = static_cast<int>(p.type);
+      a->Int("type", &type, 0, 2);
+      p.type = static_cast<ContactType>(type);
+      a->Int("object", &p.object, -1, objects - 1);
+      const long long parts =
+          p.object >= 0 ? static_cast<long long>(scene.objects[p.object].parts.size()) : 0;
+      a->Int("part", &p.part, -1, parts - 1);
+      a->Int("target_joint", &p.target_joint, -1, sim::kNumContactJoints - 1);
+      a->Reals("direction", &p.direction);
+    }
+    if (a->loading()) s.label = s.walking() ? "walk" : "contact";
   }
 }
 
-void UnifiedSkill::LoadTaskState(int i, StateReader* r) {
-  constexpr long long kMaxInt = std::numeric_limits<int>::max();
-  const scene::Scene& scene = *context_.scene;
-  const long long objects = static_cast<long long>(scene.objects.size());
-  const auto part_of = [&](long long object) {
-    const long long parts =
-        object >= 0 ? static_cast<long long>(scene.objects[object].parts.size()) : 0;
-    return static_cast<int>(r->Int("part", -1, parts - 1));
-  };
-  const long long step = r->Int("step", 0, kMaxInt);
-  const long long still = r->Int("still", 0, kMaxInt);
-  const long long completed = r->Int("completed", 0, kMaxInt);
-  // A step takes at least 5 values: no count beyond what is left.
-  const long long n = r->Int("steps", 1, static_cast<long long>(r->left() / 5));
-  if (step >= n)
-    ThrowInputError("unified skill state", "step", "a step of the chain", std::to_string(step));
-  std::vector<ContactStep> steps(static_cast<size_t>(n));
-  for (ContactStep& s : steps) {
-    s.object = static_cast<int>(r->Int("object", -1, objects - 1));
-    for (int c = 0; c < 3; ++c) s.stand_point[c] = r->Real("stand_point");
-    // A pair takes 8 values.
-    s.pairs.resize(static_cast<size_t>(r->Int("pairs", 0, static_cast<long long>(r->left() / 8))));
-    for (ContactPairSpec& p : s.pairs) {
-      p.joint = static_cast<int>(r->Int("joint", 0, sim::kNumContactJoints - 1));
-      p.type = static_cast<ContactType>(r->Int("type", 0, 2));
-      p.object = static_cast<int>(r->Int("object", -1, objects - 1));
-      p.part = part_of(p.object);
-      p.target_joint = static_cast<int>(r->Int("target_joint", -1, sim::kNumContactJoints - 1));
-      for (int c = 0; c < 3; ++c) p.direction[c] = r->Real("direction");
-    }
-    s.label = s.walking() ? "walk" : "contact";
-  }
-  step_[i] = static_cast<int>(step);
-  still_[i] = static_cast<int>(still);
-  completed_[i] = static_cast<int>(completed);
-  steps_[i] = std::move(steps);
+void UnifiedSkill::SerializeTaskState(int i, StateArchive* a) {
+  // Read into a copy: a snapshot rejected part way leaves the chain as it was.
+  UnifiedState st = unified_[i];
+  st.Serialize(a, *context_.scene);
+  if (a->loading()) unified_[i] = std::move(st);
 }
 
 SkillInfo UnifiedSkillInfo() {

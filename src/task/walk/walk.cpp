@@ -16,7 +16,6 @@
 
 #include "sims/core/error.h"
 #include "sims/sim/features.h"
-#include "sims/task/state_reader.h"
 
 namespace sims::task {
 
@@ -33,17 +32,14 @@ constexpr double kClearance = 0.3;
 WalkSkill::WalkSkill(const SkillConfig& config, const SkillContext& context)
     : Skill(config, context) {
   const int n = context.num_envs;
-  target_.assign(n, Eigen::Vector2d::Zero());
-  prev_velocity_.assign(n, Eigen::Vector2d::Zero());
-  hold_.assign(n, 0);
-  target_rng_.assign(n, Rng(0));
+  walk_.assign(n, WalkState{});
   // Walk references only walking clips (the library may hold other skills).
   if (context.motions) {
     reference_clips_ = context.motions->Find("walk");
     if (reference_clips_.empty())
       for (int c = 0; c < context.motions->num_clips(); ++c) reference_clips_.push_back(c);
     if (config.walk.style_pose_weight > 0) {
-      pose_average_.assign(n, JointAngles::Zero());
+      posture_ = true;
       for (int c = 0; c < context.motions->num_clips(); ++c) {
         const auto& frames = context.motions->clip(c).frames();
         JointAngles mean = JointAngles::Zero();
@@ -75,8 +71,8 @@ Eigen::Vector2d WalkSkill::SampleTarget(const Eigen::Vector2d& from, Rng& rng) c
 }
 
 void WalkSkill::SetTarget(int env_id, const Eigen::Vector2d& target_xy) {
-  target_[env_id] = target_xy;
-  hold_[env_id] = 0;
+  walk_[env_id].target = target_xy;
+  walk_[env_id].hold = 0;
   ClearGoals(env_id);
   SetGoal(env_id, sim::kCjPelvis, {target_xy.x(), target_xy.y(), kStandingPelvisHeight});
 }
@@ -84,11 +80,11 @@ void WalkSkill::SetTarget(int env_id, const Eigen::Vector2d& target_xy) {
 void WalkSkill::OnReset(const sim::EnvView& view, Rng& rng) {
   const int i = view.env_id;
   // Seed the env's private target stream from the env RNG so resets stay reproducible.
-  target_rng_[i] = Rng(rng.NextU64());
+  walk_[i].target_rng = Rng(rng.NextU64());
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
-  prev_velocity_[i] = view.pose->root_lin_vel.head<2>();
-  if (!pose_average_.empty()) pose_average_[i] = view.pose->dof_pos;
-  SetTarget(i, SampleTarget(root, target_rng_[i]));
+  walk_[i].prev_velocity = view.pose->root_lin_vel.head<2>();
+  if (posture_) walk_[i].pose_average = view.pose->dof_pos;
+  SetTarget(i, SampleTarget(root, walk_[i].target_rng));
 }
 
 bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
@@ -101,7 +97,7 @@ bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarg
   } else {
     return false;
   }
-  prev_velocity_[view.env_id] = view.pose->root_lin_vel.head<2>();
+  walk_[view.env_id].prev_velocity = view.pose->root_lin_vel.head<2>();
   SetTarget(view.env_id, p);
   return true;
 }
@@ -125,7 +121,7 @@ double WalkSkill::StylePoseReward(int env_id, const JointAngles& mean_pose) cons
 }
 
 double WalkSkill::goal_error(const sim::EnvView& view) const {
-  return (target_[view.env_id] - view.pose->root_pos.head<2>()).norm();
+  return (walk_[view.env_id].target - view.pose->root_pos.head<2>()).norm();
 }
 
 double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& root,
@@ -156,64 +152,44 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   const Eigen::Vector2d facing(std::cos(heading), std::sin(heading));
 
   sim::TaskStepResult r;
-  double reward = Reward(target_[i], root, vel, prev_velocity_[i], facing, target_speed(i));
+  double reward =
+      Reward(walk_[i].target, root, vel, walk_[i].prev_velocity, facing, target_speed(i));
   const double w = config_.walk.style_pose_weight;
-  if (w > 0 && !pose_average_.empty()) {
+  if (w > 0 && posture_) {
     const double a = std::min(1.0, view.control_dt / config_.walk.style_pose_time);
-    pose_average_[i] += a * (view.pose->dof_pos - pose_average_[i]);
-    reward = (1 - w) * reward + w * StylePoseReward(i, pose_average_[i]);
+    walk_[i].pose_average += a * (view.pose->dof_pos - walk_[i].pose_average);
+    reward = (1 - w) * reward + w * StylePoseReward(i, walk_[i].pose_average);
   }
   r.reward = static_cast<float>(reward);
-  prev_velocity_[i] = vel;
-  r.success = (target_[i] - root).norm() < config_.walk.success_radius;
-  hold_[i] = r.success ? hold_[i] + 1 : 0;
-  r.completed = hold_[i] >= config_.success_hold_steps;
+  walk_[i].prev_velocity = vel;
+  r.success = (walk_[i].target - root).norm() < config_.walk.success_radius;
+  walk_[i].hold = r.success ? walk_[i].hold + 1 : 0;
+  r.completed = walk_[i].hold >= config_.success_hold_steps;
   if (r.completed && config_.walk.resample_target_on_success)
-    SetTarget(i, SampleTarget(root, target_rng_[i]));
+    SetTarget(i, SampleTarget(root, walk_[i].target_rng));
   return r;
 }
 
-std::vector<double> WalkSkill::SaveSkillState(int env_id) const {
-  std::vector<double> s = {target_[env_id].x(), target_[env_id].y(), prev_velocity_[env_id].x(),
-                           prev_velocity_[env_id].y(), static_cast<double>(hold_[env_id])};
-  // The RNG state is four 64-bit words; doubles cannot hold them exactly, so split each
-  // into two 32-bit halves.
-  for (uint64_t w : target_rng_[env_id].state()) {
-    s.push_back(static_cast<double>(w >> 32));
-    s.push_back(static_cast<double>(w & 0xffffffffull));
-  }
-  if (!pose_average_.empty())
-    s.insert(s.end(), pose_average_[env_id].data(), pose_average_[env_id].data() + sim::kNumDofs);
-  return s;
+void WalkState::Serialize(StateArchive* a) {
+  a->Reals("target", &target);
+  a->Reals("prev_velocity", &prev_velocity);
+  a->Int("hold", &hold, 0, std::numeric_limits<int>::max());
+  a->RngState("target_rng", &target_rng);
 }
 
-void WalkSkill::LoadSkillState(int env_id, const double* d, size_t size) {
-  StateReader r("walk skill state", d, size);
-  target_[env_id].x() = r.Real("target");
-  target_[env_id].y() = r.Real("target");
-  prev_velocity_[env_id].x() = r.Real("prev_velocity");
-  prev_velocity_[env_id].y() = r.Real("prev_velocity");
-  hold_[env_id] = static_cast<int>(r.Int("hold", 0, std::numeric_limits<int>::max()));
-  std::array<uint64_t, 4> st;
-  for (uint64_t& w : st) {
-    const auto hi = static_cast<uint64_t>(r.Int("target_rng", 0, 0xffffffffll));
-    w = (hi << 32) | static_cast<uint64_t>(r.Int("target_rng", 0, 0xffffffffll));
-  }
-  JointAngles average = JointAngles::Zero();
-  // A snapshot taken before the posture term was switched on (a resumed campaign) has no
-  // average: it starts at the style clip's mean and catches up within style_pose_time.
-  const bool has_average = !pose_average_.empty() && r.left() > 0;
-  if (has_average)
-    for (int j = 0; j < sim::kNumDofs; ++j) average[j] = r.Real("pose_average");
-  r.ExpectEnd();
-  if (has_average) {
-    pose_average_[env_id] = average;
-  } else if (!pose_average_.empty()) {
+void WalkSkill::SerializeSkillState(int env_id, StateArchive* a) {
+  WalkState& st = walk_[env_id];
+  st.Serialize(a);
+  if (!posture_) return;
+  if (!a->loading() || a->left() > 0) {
+    a->Reals("pose_average", &st.pose_average);
+  } else {
+    // A snapshot taken before the posture term was switched on (a resumed campaign) has no
+    // average: it starts at the style clip's mean and catches up within style_pose_time.
     const int clip = style_id(env_id);
     const bool known = clip >= 0 && clip < static_cast<int>(clip_mean_pose_.size());
-    pose_average_[env_id] = known ? clip_mean_pose_[clip] : JointAngles::Zero();
+    st.pose_average = known ? clip_mean_pose_[clip] : JointAngles::Zero();
   }
-  target_rng_[env_id].set_state(st);
 }
 
 void WalkParams::Validate() const {

@@ -46,6 +46,16 @@ struct FallState {
   double reach = 0;        ///< Largest horizontal body-origin distance from the root (m).
 };
 
+/// The per-env data of the get-up skill (after its ObjectState in a snapshot).
+struct GetUpState {
+  int phase = 0;                                    ///< GetUpSkill::Phase.
+  int start = 0;                                    ///< GetUpSkill::Start.
+  Eigen::Vector2d stand = Eigen::Vector2d::Zero();  ///< Stand point (world xy).
+
+  /// Lists the fields.
+  void Serialize(StateArchive* a);
+};
+
 /// The get-up skill.
 class GetUpSkill : public ObjectSkill {
  public:
@@ -69,13 +79,13 @@ class GetUpSkill : public ObjectSkill {
   std::string start_label(int env_id) const override;
 
   /// Current phase of env i.
-  int phase(int env_id) const { return phase_[env_id]; }
+  int phase(int env_id) const { return getup_[env_id].phase; }
   /// How env i's episode started.
-  Start start(int env_id) const { return static_cast<Start>(start_[env_id]); }
+  Start start(int env_id) const { return static_cast<Start>(getup_[env_id].start); }
   /// Stand point of env i (world xy).
-  const Eigen::Vector2d& stand_point(int env_id) const { return stand_[env_id]; }
+  const Eigen::Vector2d& stand_point(int env_id) const { return getup_[env_id].stand; }
   /// Whether env i's episode started on the floor (a fall state or a floor clip).
-  bool floor_start(int env_id) const { return start_[env_id] >= kFloorClipStart; }
+  bool floor_start(int env_id) const { return getup_[env_id].start >= kFloorClipStart; }
   /// The precomputed fall states.
   const std::vector<FallState>& fall_states() const { return *fall_states_; }
   /// Standing upright (pelvis and head heights of `params`, pelvis and torso up axes).
@@ -92,8 +102,7 @@ class GetUpSkill : public ObjectSkill {
   bool Accepts(const ObjectGeometry& g) const override;
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
   void DefaultInit(int env_id, Rng& rng, sim::InitialState* init) override;
-  void SaveTaskState(int env_id, std::vector<double>* out) const override;
-  void LoadTaskState(int env_id, StateReader* r) override;
+  void SerializeTaskState(int env_id, StateArchive* archive) override;
 
  private:
   void StartGetUp(int env_id, const sim::BodyStates& b);
@@ -105,8 +114,7 @@ class GetUpSkill : public ObjectSkill {
   double foot_height_ = 0.0;
   std::shared_ptr<const std::vector<FallState>> fall_states_;
   std::vector<int> furniture_clips_, floor_clips_;  // library indices
-  std::vector<int> phase_, start_;
-  std::vector<Eigen::Vector2d> stand_;
+  std::vector<GetUpState> getup_;                   // per env
 };
 
 /// Generates `count` fall states from `seed` (see the file comment): state k draws from

@@ -50,14 +50,13 @@ class ReachSkill : public ObjectSkill {
   double ClipContactTime(int clip) const override;
   void SampleTask(int env_id, Rng& rng) override;
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
-  void SaveTaskState(int env_id, std::vector<double>* out) const override;
-  void LoadTaskState(int env_id, StateReader* r) override;
+  void SerializeTaskState(int env_id, StateArchive* archive) override;
 
  private:
   using Bands = std::array<std::vector<Eigen::Vector3d>, 3>;
   Bands FrontPoints(const ObjectGeometry& g) const;
   std::vector<Bands> candidates_;
-  std::vector<int> hand_;
+  std::vector<int> hand_;  // per env: the reaching hand (its whole per-env state)
 };
 
 /// Registry entry for reach.

@@ -30,6 +30,18 @@ inline constexpr int kContactPairObsDim = sim::kNumContactJoints * 4;
 /// Categories the unified skill trains on by default.
 std::vector<std::string> UnifiedCategories();
 
+/// The per-env data of the unified skill (after its ObjectState in a snapshot).
+struct UnifiedState {
+  std::vector<ContactStep> steps;  ///< The env's chain.
+  int step = 0;                    ///< Index of the current step.
+  int still = 0;                   ///< Consecutive steps the character has been still.
+  int completed = 0;               ///< Steps completed this episode.
+
+  /// Lists the fields; `scene` bounds the object and part indices. Step labels are not stored:
+  /// reading gives "walk" or "contact".
+  void Serialize(StateArchive* a, const scene::Scene& scene);
+};
+
 /// The unified contact skill.
 class UnifiedSkill : public ObjectSkill {
  public:
@@ -49,30 +61,28 @@ class UnifiedSkill : public ObjectSkill {
   /// Runs `steps` in every following episode (empty = random chains again).
   void SetPlan(const std::vector<ContactStep>& steps);
   /// Env i's chain.
-  const std::vector<ContactStep>& steps(int env_id) const { return steps_[env_id]; }
+  const std::vector<ContactStep>& steps(int env_id) const { return unified_[env_id].steps; }
   /// Index of env i's current step.
-  int step_index(int env_id) const { return step_[env_id]; }
+  int step_index(int env_id) const { return unified_[env_id].step; }
   /// Steps env i has completed this episode.
-  int steps_completed(int env_id) const { return completed_[env_id]; }
+  int steps_completed(int env_id) const { return unified_[env_id].completed; }
   /// Contact error of env i's current step at the last step (m; eval metric, see
   /// PairContactError; the stand-point distance for walking steps).
-  double contact_error(int env_id) const { return error_[env_id]; }
+  double contact_error(int env_id) const { return env_[env_id].error; }
   /// A random chain over scene object objects()[k] (the training distribution).
   std::vector<ContactStep> RandomChain(int k, Rng& rng) const;
 
  protected:
   bool Accepts(const ObjectGeometry& g) const override { return g.object >= 0; }
   void SampleTask(int env_id, Rng& rng) override;
-  void SaveTaskState(int env_id, std::vector<double>* out) const override;
-  void LoadTaskState(int env_id, StateReader* r) override;
+  void SerializeTaskState(int env_id, StateArchive* archive) override;
 
  private:
   void UpdateGoals(int env_id, const std::array<JointPair, sim::kNumContactJoints>& pairs);
   std::vector<ContactStep> Templates(int k) const;
 
   std::vector<ContactStep> plan_;
-  std::vector<std::vector<ContactStep>> steps_;
-  std::vector<int> step_, still_, completed_;
+  std::vector<UnifiedState> unified_;  // per env
 };
 
 /// Registry entry for unified.

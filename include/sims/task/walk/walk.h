@@ -19,11 +19,30 @@
 
 namespace sims::task {
 
+/// The per-env data of the walk skill, after the base SkillState in a snapshot. The skill object
+/// itself is the model (settings, clip postures) and is shared by all envs.
+struct WalkState {
+  /// One angle per hinge (rad).
+  using JointAngles = Eigen::Matrix<double, sim::kNumDofs, 1>;
+
+  Eigen::Vector2d target = Eigen::Vector2d::Zero();         ///< Pelvis target (world xy).
+  Eigen::Vector2d prev_velocity = Eigen::Vector2d::Zero();  ///< Root velocity one step ago (xy).
+  int hold = 0;                                             ///< Consecutive steps success has held.
+  /// Later targets (after a success) come from this per-env stream, seeded at reset, so that the
+  /// hook needs no access to the env's RNG inside Step().
+  Rng target_rng{0};
+  /// Running-average joint angles q̃ (used, and snapshotted, only when style_pose_weight > 0).
+  JointAngles pose_average = JointAngles::Zero();
+
+  /// Lists the fields but the pose average, which WalkSkill adds when the posture term is on.
+  void Serialize(StateArchive* a);
+};
+
 /// The walk skill (pelvis target on the floor).
 class WalkSkill : public Skill {
  public:
   /// One angle per hinge (rad).
-  using JointAngles = Eigen::Matrix<double, sim::kNumDofs, 1>;
+  using JointAngles = WalkState::JointAngles;
 
   /// Per-env targets are drawn at reset.
   WalkSkill(const SkillConfig& config, const SkillContext& context);
@@ -39,14 +58,14 @@ class WalkSkill : public Skill {
   /// Sets env i's target (world xy; z is ignored) — used by the FSM and evaluation.
   void SetTarget(int env_id, const Eigen::Vector2d& target_xy);
   /// Env i's current target.
-  Eigen::Vector2d target(int env_id) const { return target_[env_id]; }
+  Eigen::Vector2d target(int env_id) const { return walk_[env_id].target; }
   /// The speed env `env_id`'s reward asks for (m/s): target_speed, or its style clip's pace.
   double target_speed(int env_id) const;
   /// The style-posture reward of env `env_id` for averaged joint angles `mean_pose` (1 when no
   /// style clip is drawn): exp(−style_pose_scale·mean_j (q̃_j − q̄_j)²).
   double StylePoseReward(int env_id, const JointAngles& mean_pose) const;
   /// Env `env_id`'s running-average joint angles q̃ (style_pose_weight > 0 only).
-  const JointAngles& average_pose(int env_id) const { return pose_average_[env_id]; }
+  const JointAngles& average_pose(int env_id) const { return walk_[env_id].pose_average; }
   /// Draws a target on free floor at a distance in [min, max] from `from`.
   Eigen::Vector2d SampleTarget(const Eigen::Vector2d& from, Rng& rng) const;
   /// The walk reward for one state (exposed for tests).
@@ -55,20 +74,15 @@ class WalkSkill : public Skill {
                        const Eigen::Vector2d& facing, double target_speed);
 
  protected:
-  std::vector<double> SaveSkillState(int env_id) const override;
-  void LoadSkillState(int env_id, const double* data, size_t size) override;
+  void SerializeSkillState(int env_id, StateArchive* archive) override;
 
  private:
-  std::vector<Eigen::Vector2d> target_, prev_velocity_;
-  std::vector<int> hold_;
-  // Walk targets for later resampling come from a per-env stream seeded at reset, so the
-  // hook needs no access to the env's RNG inside Step().
-  std::vector<Rng> target_rng_;
+  std::vector<WalkState> walk_;  // per env
+  // Whether the style-posture term is on (style_pose_weight > 0 and a motion library).
+  bool posture_ = false;
   // Mean joint angles of every library clip (the style clips' postures), when
   // style_pose_weight > 0; shared read-only by all envs.
   std::vector<JointAngles> clip_mean_pose_;
-  // Per env: the running-average posture q̃ (empty when style_pose_weight is 0).
-  std::vector<JointAngles> pose_average_;
 };
 
 /// Registry entry for walk.
