@@ -8,15 +8,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sims/assets/prepare.h"
 #include "sims/core/app.h"
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
-#include "sims/language/assets.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Convert setup-time data (npm tarballs, WordNet) into data/ formats"};
-  sims::language::AssetOptions opt;
+  sims::assets::AssetOptions opt;
   std::string data_dir = sims::DataPath("").string(), only;
   bool list = false;
   std::vector<std::string> vocab;
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
   return sims::RunApp(flags, [&] {
     opt.data_dir = data_dir;
     opt.vocabulary_files.assign(vocab.begin(), vocab.end());
-    std::vector<sims::language::AssetStep> steps = sims::language::LanguageAssetSteps();
+    std::vector<sims::assets::AssetStep> steps = sims::assets::LanguageAssetSteps();
     if (list) {
       for (const auto& s : steps) std::cout << s.name << "\t" << s.description << "\n";
       return 0;

@@ -10,7 +10,6 @@
 
 namespace sims::language {
 
-using internal::AppendUtf8;
 using internal::DecodeUtf8;
 
 namespace {

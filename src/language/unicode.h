@@ -5,14 +5,14 @@
 
 #include <string>
 
+#include "sims/language/utf8.h"  // AppendUtf8, public for the asset converters
+
 namespace sims::language::internal {
 
 /// Decodes UTF-8; invalid bytes become U+FFFD (one per byte) instead of failing.
 std::u32string DecodeUtf8(const std::string& s);
 /// Encodes code points as UTF-8.
 std::string EncodeUtf8(const std::u32string& s);
-/// Appends one code point as UTF-8.
-void AppendUtf8(char32_t cp, std::string* out);
 
 /// \p{L} (approximate tables).
 bool IsLetter(char32_t cp);

@@ -1,4 +1,4 @@
-#include "sims/language/assets.h"
+#include "sims/assets/prepare.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,20 +7,24 @@
 #include <sstream>
 #include <unordered_set>
 
-#include "language/tar_gz.h"
-#include "language/unicode.h"
+#include "assets/tar_gz.h"
 #include "sims/core/config.h"
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
 #include "sims/core/progress.h"
 #include "sims/language/tokenizer.h"
+#include "sims/language/utf8.h"
 #include "sims/language/word_vectors.h"
 #include "sims/language/wordnet.h"
 
-namespace sims::language {
+namespace sims::assets {
 
 namespace fs = std::filesystem;
+using language::AppendUtf8;
+using language::ClipTokenizer;
+using language::WordNetLexicon;
+using language::WordVectors;
 using nlohmann::json;
 
 namespace {
@@ -81,7 +85,7 @@ std::string ParseJsString(const std::string& src, std::size_t pos, const std::st
         out.push_back('\0');
         break;
       case 'x':
-        internal::AppendUtf8(static_cast<char32_t>(hex(i + 1, 2)), &out);
+        AppendUtf8(static_cast<char32_t>(hex(i + 1, 2)), &out);
         i += 2;
         break;
       case 'u': {
@@ -91,10 +95,10 @@ std::string ParseJsString(const std::string& src, std::size_t pos, const std::st
           pending_high = unit;
         } else if (unit >= 0xDC00 && unit <= 0xDFFF && pending_high) {
           const char32_t cp = 0x10000 + ((pending_high - 0xD800) << 10) + (unit - 0xDC00);
-          internal::AppendUtf8(cp, &out);
+          AppendUtf8(cp, &out);
           pending_high = 0;
         } else {
-          internal::AppendUtf8(unit, &out);
+          AppendUtf8(unit, &out);
         }
         break;
       }
@@ -417,4 +421,4 @@ std::vector<AssetStep> LanguageAssetSteps() {
   return steps;
 }
 
-}  // namespace sims::language
+}  // namespace sims::assets

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace sims::language::internal {
+namespace sims::assets::internal {
 
 /// One regular file inside the archive.
 struct TarEntry {
@@ -67,4 +67,4 @@ class TarEntryStreamBuf : public std::streambuf {
 TarEntry SeekEntry(TarGzReader* reader, const std::string& suffix,
                    const std::filesystem::path& archive);
 
-}  // namespace sims::language::internal
+}  // namespace sims::assets::internal

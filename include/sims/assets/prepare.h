@@ -7,6 +7,8 @@
 // Every step is idempotent: a "<output>.stamp" file records the inputs (size, mtime) and the
 // parameters, and a step whose stamp matches is skipped unless forced. Outputs are written
 // atomically, so an interrupted run never leaves a half-written file behind.
+// A module of its own, apart from language: this is setup-time code (tarballs, zlib, the SAX
+// stream) that the language module, which only reads the outputs at run time, does not need.
 #pragma once
 
 #include <filesystem>
@@ -16,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace sims::language {
+namespace sims::assets {
 
 /// Settings shared by the asset steps (prepare_assets flags).
 struct AssetOptions {
@@ -76,4 +78,4 @@ void WriteAssetStamp(const std::filesystem::path& output, const nlohmann::json& 
 /// A stamp entry describing an input file (path, size, modification time).
 nlohmann::json DescribeInput(const std::filesystem::path& input);
 
-}  // namespace sims::language
+}  // namespace sims::assets

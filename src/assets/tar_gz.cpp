@@ -1,4 +1,4 @@
-#include "language/tar_gz.h"
+#include "assets/tar_gz.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 
 #include "sims/core/error.h"
 
-namespace sims::language::internal {
+namespace sims::assets::internal {
 
 namespace {
 
@@ -181,4 +181,4 @@ TarEntry SeekEntry(TarGzReader* reader, const std::string& suffix,
                   "not found (is this the right npm package version?)");
 }
 
-}  // namespace sims::language::internal
+}  // namespace sims::assets::internal
