@@ -7,12 +7,12 @@
 
 namespace sims::bench {
 
+using humanoid::BuildModel;
+using humanoid::Humanoid;
+using humanoid::kNumDofs;
 using sim::BatchedEnv;
-using sim::BuildModel;
 using sim::EnvConfig;
 using sim::EnvStats;
-using sim::Humanoid;
-using sim::kNumDofs;
 
 nlohmann::json RunStandingDemo(const EnvConfig& config, int steps, double noise,
                                const std::filesystem::path& out_dir) {

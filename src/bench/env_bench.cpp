@@ -10,13 +10,13 @@
 
 namespace sims::bench {
 
+using humanoid::BuildModel;
+using humanoid::Humanoid;
+using humanoid::kNumDofs;
+using humanoid::MakeData;
+using humanoid::MjDataPtr;
 using sim::BatchedEnv;
-using sim::BuildModel;
 using sim::EnvConfig;
-using sim::Humanoid;
-using sim::kNumDofs;
-using sim::MakeData;
-using sim::MjDataPtr;
 
 namespace {
 

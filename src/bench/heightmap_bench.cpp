@@ -7,20 +7,20 @@
 
 #include "sims/core/parallel.h"
 #include "sims/core/rng.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/scene/builtin.h"
 #include "sims/scene/height_grid.h"
 #include "sims/scene/ray_caster.h"
-#include "sims/sim/model_builder.h"
 #include "sims/sim/scene_physics.h"
 
 namespace sims::bench {
 
-using sim::BuildModel;
+using humanoid::BuildModel;
+using humanoid::MakeData;
+using humanoid::MjDataPtr;
+using humanoid::MjModelPtr;
+using humanoid::StaticGeometry;
 using sim::CompileSceneGeometry;
-using sim::MakeData;
-using sim::MjDataPtr;
-using sim::MjModelPtr;
-using sim::StaticGeometry;
 
 namespace {
 

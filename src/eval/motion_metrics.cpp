@@ -6,13 +6,13 @@
 
 #include "sims/core/error.h"
 #include "sims/core/rng.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::eval {
 
-std::vector<std::vector<Eigen::Vector3d>> BodySamplePoints(const sim::Humanoid& humanoid) {
+std::vector<std::vector<Eigen::Vector3d>> BodySamplePoints(const humanoid::Humanoid& humanoid) {
   const mjModel* m = humanoid.model();
-  std::vector<std::vector<Eigen::Vector3d>> out(sim::kNumBodies);
+  std::vector<std::vector<Eigen::Vector3d>> out(humanoid::kNumBodies);
   for (int g = 0; g < m->ngeom; ++g) {
     const int b = humanoid.geom_body(g);
     if (b < 0) continue;
@@ -53,7 +53,7 @@ scene::PenetrationStats MotionPenetration(
     const std::vector<std::vector<Eigen::Vector3d>>& samples) {
   std::vector<Eigen::Vector3d> world;
   for (const auto& f : record.frames)
-    for (int b = 0; b < sim::kNumBodies; ++b)
+    for (int b = 0; b < humanoid::kNumBodies; ++b)
       for (const auto& p : samples[b]) world.push_back(f.body_pos[b] + f.body_rot[b] * p);
   return scene::MeasurePenetration(occupancy, world);
 }
@@ -64,7 +64,7 @@ FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_he
   int fast = 0;
   const double dt = 1.0 / record.fps;
   for (size_t t = 1; t < record.frames.size(); ++t)
-    for (int foot : {sim::kLeftFoot, sim::kRightFoot}) {
+    for (int foot : {humanoid::kLeftFoot, humanoid::kRightFoot}) {
       const Eigen::Vector3d a = record.frames[t - 1].body_pos[foot],
                             b = record.frames[t].body_pos[foot];
       if (a.z() > contact_height || b.z() > contact_height) continue;
@@ -81,22 +81,22 @@ FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_he
 }
 
 Eigen::VectorXd PoseFeature(const io::RecordFrame& f) {
-  Eigen::VectorXd v(3 * (sim::kNumBodies - 1) + sim::kDofObsDim);
-  const Eigen::Quaterniond h_inv = sim::HeadingInverse(f.body_rot[sim::kPelvis]);
+  Eigen::VectorXd v(3 * (humanoid::kNumBodies - 1) + humanoid::kDofObsDim);
+  const Eigen::Quaterniond h_inv = humanoid::HeadingInverse(f.body_rot[humanoid::kPelvis]);
   int k = 0;
-  for (int b = 1; b < sim::kNumBodies; ++b) {
-    const Eigen::Vector3d d = h_inv * (f.body_pos[b] - f.body_pos[sim::kPelvis]);
+  for (int b = 1; b < humanoid::kNumBodies; ++b) {
+    const Eigen::Vector3d d = h_inv * (f.body_pos[b] - f.body_pos[humanoid::kPelvis]);
     for (int c = 0; c < 3; ++c) v[k++] = d[c];
   }
-  float dof[sim::kDofObsDim];
-  sim::DofObservation(f.dof_pos, dof);
-  for (int c = 0; c < sim::kDofObsDim; ++c) v[k++] = dof[c];
+  float dof[humanoid::kDofObsDim];
+  humanoid::DofObservation(f.dof_pos, dof);
+  for (int c = 0; c < humanoid::kDofObsDim; ++c) v[k++] = dof[c];
   return v;
 }
 
 Eigen::MatrixXd PoseFeatures(const io::MotionRecord& record, int stride) {
   const int n = (record.num_frames() + stride - 1) / std::max(stride, 1);
-  Eigen::MatrixXd m(n, 3 * (sim::kNumBodies - 1) + sim::kDofObsDim);
+  Eigen::MatrixXd m(n, 3 * (humanoid::kNumBodies - 1) + humanoid::kDofObsDim);
   for (int i = 0; i < n; ++i)
     m.row(i) = PoseFeature(record.frames[static_cast<size_t>(i) * stride]).transpose();
   return m;

@@ -340,7 +340,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
       if (!env.dones()[i]) {
         if (o.style_eval) {
-          const sim::HumanoidPose& p = env.pose(i);
+          const humanoid::HumanoidPose& p = env.pose(i);
           motion::MotionFrame f;
           f.root_pos = p.root_pos;
           f.root_rot = p.root_rot;
@@ -354,7 +354,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
         t.style = label >= 0 ? st.classifier->labels()[label] : "";
         io::MotionRecordBuilder record(setup.context.humanoid);
         for (const motion::MotionFrame& f : motion[i]) {
-          sim::HumanoidPose p;
+          humanoid::HumanoidPose p;
           p.root_pos = f.root_pos;
           p.root_rot = f.root_rot;
           p.dof_pos = f.dof_pos;

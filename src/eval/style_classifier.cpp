@@ -6,7 +6,7 @@
 #include <set>
 
 #include "sims/core/error.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::eval {
 
@@ -38,16 +38,17 @@ Eigen::VectorXd StyleFeatures(const std::vector<motion::MotionFrame>& frames, in
   const int n = end - begin;
   // Per-frame signals; velocities from forward differences in the heading frame of the frame.
   Eigen::ArrayXd fwd(n - 1), lat(n - 1), turn(n - 1), z(n), pitch(n), roll(n);
-  Eigen::MatrixXd dofs(sim::kNumDofs, n);
+  Eigen::MatrixXd dofs(humanoid::kNumDofs, n);
   for (int k = 0; k < n; ++k) {
     const motion::MotionFrame& f = frames[begin + k];
-    const Eigen::Quaterniond h_inv = sim::HeadingInverse(f.root_rot);
+    const Eigen::Quaterniond h_inv = humanoid::HeadingInverse(f.root_rot);
     if (k + 1 < n) {
       const motion::MotionFrame& g = frames[begin + k + 1];
       const Eigen::Vector3d v = h_inv * ((g.root_pos - f.root_pos) * fps);
       fwd[k] = v.x();
       lat[k] = v.y();
-      turn[k] = WrapAngle(sim::HeadingAngle(g.root_rot) - sim::HeadingAngle(f.root_rot)) * fps;
+      turn[k] =
+          WrapAngle(humanoid::HeadingAngle(g.root_rot) - humanoid::HeadingAngle(f.root_rot)) * fps;
     }
     z[k] = f.root_pos.z();
     // World up seen from the pelvis with its heading removed: tilt forward/back and sideways.
@@ -70,7 +71,7 @@ Eigen::VectorXd StyleFeatures(const std::vector<motion::MotionFrame>& frames, in
   out[i++] = stddev(z);
   out[i++] = pitch.mean();
   out[i++] = std::abs(roll.mean());
-  for (int d = 0; d < sim::kNumDofs; ++d) {
+  for (int d = 0; d < humanoid::kNumDofs; ++d) {
     const Eigen::ArrayXd a = dofs.row(d).transpose().array();
     out[i++] = a.mean();
     out[i++] = stddev(a);

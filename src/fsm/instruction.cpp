@@ -6,9 +6,9 @@
 #include "sims/core/error.h"
 #include "sims/core/skill_vocabulary.h"
 #include "sims/fsm/navigation.h"
+#include "sims/humanoid/humanoid.h"
 #include "sims/planner/sentence.h"
 #include "sims/scene/contact_targets.h"
-#include "sims/sim/humanoid.h"
 
 namespace sims::fsm {
 
@@ -84,7 +84,8 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
         in.note = "walk keyframe without an object or a room to walk to";
       }
     } else if (traits.hand_target) {
-      in.target.hand = planner::ReachUsesLeftHand(k.caption) ? sim::kCjLeftHand : sim::kCjRightHand;
+      in.target.hand =
+          planner::ReachUsesLeftHand(k.caption) ? humanoid::kCjLeftHand : humanoid::kCjRightHand;
       in.target.height = planner::ReachHeightFromCaption(k.caption);
     }
     if (traits.needs_object && obj < 0 && in.placed) {
@@ -105,14 +106,14 @@ std::string ContactStepCaption(const task::ContactStep& step, const scene::Scene
     if (p.type == task::ContactType::kNone) continue;
     std::string what;
     if (p.target_joint >= 0) {
-      what = sim::ContactJointNames()[p.target_joint];
+      what = humanoid::ContactJointNames()[p.target_joint];
     } else if (p.object >= 0 && p.object < static_cast<int>(scene.objects.size())) {
       const auto& o = scene.objects[p.object];
       what = (p.part >= 0 && p.part < static_cast<int>(o.parts.size()) ? o.parts[p.part].name
                                                                        : o.category) +
              " (" + o.instance + ")";
     }
-    text += (text.empty() ? "" : ", ") + std::string(sim::ContactJointNames()[p.joint]) +
+    text += (text.empty() ? "" : ", ") + std::string(humanoid::ContactJointNames()[p.joint]) +
             (p.type == task::ContactType::kContact ? " on " : " not on ") + what;
   }
   return text.empty() ? "contact step" : text;

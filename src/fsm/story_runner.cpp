@@ -16,11 +16,11 @@
 #include "sims/core/progress.h"
 #include "sims/core/rng.h"
 #include "sims/core/skill_vocabulary.h"
+#include "sims/humanoid/features.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/contact_targets.h"
 #include "sims/sim/env.h"
-#include "sims/sim/features.h"
 #include "sims/sim/scene_physics.h"
 #include "sims/task/skill.h"
 
@@ -46,7 +46,7 @@ class StoryTask : public sim::TaskHook {
   explicit StoryTask(std::shared_ptr<task::Skill> layout) : layout_(std::move(layout)) {}
   void set_current(task::Skill* s) { current_ = s; }
   task::Skill* current() const { return current_; }
-  void set_start(const sim::HumanoidPose& p) { start_ = p; }
+  void set_start(const humanoid::HumanoidPose& p) { start_ = p; }
   const sim::TaskStepResult& last() const { return last_; }
 
   int obs_dim() const override { return layout_->obs_dim(); }
@@ -67,7 +67,7 @@ class StoryTask : public sim::TaskHook {
  private:
   std::shared_ptr<task::Skill> layout_;
   task::Skill* current_ = nullptr;
-  sim::HumanoidPose start_;
+  humanoid::HumanoidPose start_;
   sim::TaskStepResult last_;
 };
 
@@ -116,7 +116,7 @@ struct StoryRunner::Impl {
   std::shared_ptr<const scene::Scene> scene;
   StoryOptions options;
   PolicySet policy_set;
-  sim::StaticGeometry geometry;
+  humanoid::StaticGeometry geometry;
   task::SkillContext context;
   std::map<std::string, LoadedPolicy> policies;
   std::map<std::string, std::shared_ptr<task::Skill>> skills;
@@ -169,8 +169,8 @@ struct StoryRunner::Impl {
 
   bool Fallen() const {
     const auto& b = env->bodies(0);
-    return b.pos[sim::kHead].z() < options.fallen_head_height &&
-           b.pos[sim::kPelvis].z() < options.fallen_pelvis_height;
+    return b.pos[humanoid::kHead].z() < options.fallen_head_height &&
+           b.pos[humanoid::kPelvis].z() < options.fallen_pelvis_height;
   }
 
   sim::EnvView View() const { return env->View(0); }
@@ -299,12 +299,12 @@ struct StoryRunner::Impl {
   // Without a working get-up the story cannot go on from the floor: the character is put
   // back on its feet at the nearest free spot, facing the way it was (the result says so).
   void ResetStanding() {
-    const sim::HumanoidPose& now = env->pose(0);
+    const humanoid::HumanoidPose& now = env->pose(0);
     Eigen::Vector2d xy = now.root_pos.head<2>();
     if (auto f = free_space->NearestFree(xy, 2.0)) xy = *f;
     const Eigen::Vector3d forward = now.root_rot * Eigen::Vector3d::UnitX();
-    sim::HumanoidPose pose;
-    pose.root_pos = {xy.x(), xy.y(), sim::kDefaultRootHeight};
+    humanoid::HumanoidPose pose;
+    pose.root_pos = {xy.x(), xy.y(), humanoid::kDefaultRootHeight};
     pose.root_rot =
         Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Eigen::Vector3d::UnitZ());
     task->set_start(pose);
@@ -321,8 +321,8 @@ struct StoryRunner::Impl {
              double start_heading, io::MotionRecordBuilder* rec, bool report_progress) {
     recorder = rec;
     step = 0;
-    sim::HumanoidPose pose;
-    pose.root_pos = {start.x(), start.y(), sim::kDefaultRootHeight};
+    humanoid::HumanoidPose pose;
+    pose.root_pos = {start.x(), start.y(), humanoid::kDefaultRootHeight};
     pose.root_rot = Eigen::AngleAxisd(start_heading, Eigen::Vector3d::UnitZ());
     task->set_start(pose);
     task->set_current(nullptr);
@@ -492,7 +492,7 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   m.options = options;
   m.policy_set = policies;
   m.geometry = sim::CompileSceneGeometry(*m.scene);
-  m.context.humanoid = std::make_shared<const sim::Humanoid>(sim::BuildModel(m.geometry));
+  m.context.humanoid = std::make_shared<const humanoid::Humanoid>(humanoid::BuildModel(m.geometry));
   m.context.scene = m.scene;
   m.context.ray_caster = std::make_shared<const scene::RayCaster>(*m.scene);
   m.context.height_grid = std::make_shared<const scene::SceneHeightGrid>(
@@ -514,11 +514,11 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
       const task::SkillInfo& info = task::FindSkill(skill);
       auto s = info.create(p.skill_config, info.traits.flat_scene ? flat : m.context);
       if (obs_dim < 0) {
-        obs_dim = sim::kSelfObsDim + s->obs_dim();
+        obs_dim = humanoid::kSelfObsDim + s->obs_dim();
         env_config = p.env_config;
         layout = s;
       }
-      if (sim::kSelfObsDim + s->obs_dim() != obs_dim || p.policy->obs_dim() != obs_dim)
+      if (humanoid::kSelfObsDim + s->obs_dim() != obs_dim || p.policy->obs_dim() != obs_dim)
         ThrowInputError(file.string(), "obs_dim",
                         "the observation width shared by the story's policies (" +
                             std::to_string(obs_dim) + ")",
@@ -541,15 +541,15 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   env_config.seed = options.seed;
   m.task = std::make_shared<StoryTask>(layout);
   m.env = std::make_unique<sim::BatchedEnv>(m.context.humanoid, env_config, m.task);
-  m.action.assign(sim::kNumDofs, 0.0f);
+  m.action.assign(humanoid::kNumDofs, 0.0f);
 }
 
 StoryRunner::~StoryRunner() = default;
 
 void StoryRunner::SetActionOverride(ActionOverride fn) { impl_->override_fn = std::move(fn); }
 
-const sim::StaticGeometry& StoryRunner::geometry() const { return impl_->geometry; }
-std::shared_ptr<const sim::Humanoid> StoryRunner::humanoid() const {
+const humanoid::StaticGeometry& StoryRunner::geometry() const { return impl_->geometry; }
+std::shared_ptr<const humanoid::Humanoid> StoryRunner::humanoid() const {
   return impl_->context.humanoid;
 }
 
@@ -665,7 +665,7 @@ std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>& jobs, in
         const learning::Policy& policy =
             *m[rows[0]]->policies.at(m[rows[0]]->PendingSkill()).policy;
         const int obs_dim = policy.obs_dim(), act_dim = policy.action_dim();
-        SIMS_CHECK(act_dim == sim::kNumDofs);
+        SIMS_CHECK(act_dim == humanoid::kNumDofs);
         obs_rows.resize(static_cast<size_t>(k) * obs_dim);
         act_rows.resize(static_cast<size_t>(k) * act_dim);
         for (int r = 0; r < k; ++r) {

@@ -148,17 +148,18 @@ void AddCharacter(const MotionRecord& record, const GltfOptions& options, GltfBu
                   int world) {
   const auto& skel = motion::HumanoidSkeleton::Default();
   const auto humanoid = motion::HumanoidSkeleton::DefaultHumanoid();
-  const std::array<ShapeMesh, sim::kNumBodies> shapes =
+  const std::array<ShapeMesh, humanoid::kNumBodies> shapes =
       HumanoidBodyShapes(*humanoid, options.sphere_segments);
   const int skin = g->Material("character", {0.80f, 0.60f, 0.45f, 1}, 0.6);
-  std::array<int, sim::kNumBodies> node{};
-  for (int b = 0; b < sim::kNumBodies; ++b) {
-    json n = {{"name", sim::BodyNames()[b]}};
-    const int mesh = g->AddMesh(std::string(sim::BodyNames()[b]) + "_shape", {{shapes[b], skin}});
+  std::array<int, humanoid::kNumBodies> node{};
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
+    json n = {{"name", humanoid::BodyNames()[b]}};
+    const int mesh =
+        g->AddMesh(std::string(humanoid::BodyNames()[b]) + "_shape", {{shapes[b], skin}});
     if (mesh >= 0) n["mesh"] = mesh;
     Eigen::Quaterniond rot = skel.rest[b];
     Eigen::Vector3d trans =
-        b == 0 ? Eigen::Vector3d(0, 0, sim::kDefaultRootHeight) : skel.offset[b];
+        b == 0 ? Eigen::Vector3d(0, 0, humanoid::kDefaultRootHeight) : skel.offset[b];
     if (!record.frames.empty()) {
       rot = LocalRotation(record.frames[0], b, skel.parent[b]);
       if (b == 0) trans = record.frames[0].body_pos[0];
@@ -167,7 +168,7 @@ void AddCharacter(const MotionRecord& record, const GltfOptions& options, GltfBu
     n["rotation"] = QuatXyzw(rot);
     node[b] = g->AddNode(n);
   }
-  for (int b = 0; b < sim::kNumBodies; ++b) {
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
     const int p = skel.parent[b];
     json& parent = p < 0 ? g->node(world) : g->node(node[p]);
     if (!parent.contains("children")) parent["children"] = json::array();
@@ -190,7 +191,7 @@ void AddCharacter(const MotionRecord& record, const GltfOptions& options, GltfBu
   for (const RecordFrame& f : record.frames)
     for (int k = 0; k < 3; ++k) root_t.push_back(static_cast<float>(f.body_pos[0][k]));
   add_channel(node[0], "translation", root_t, "VEC3", 3);
-  for (int b = 0; b < sim::kNumBodies; ++b) {
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
     std::vector<float> q;
     Eigen::Quaterniond prev = Eigen::Quaterniond::Identity();
     for (std::size_t i = 0; i < record.frames.size(); ++i) {

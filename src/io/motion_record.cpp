@@ -4,8 +4,8 @@
 
 #include "sims/core/config.h"
 #include "sims/core/error.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/motion/skeleton.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::io {
 
@@ -36,7 +36,7 @@ void MotionRecord::Validate(const std::string& source) const {
                       std::to_string(f.time));
     bool finite =
         f.root_pos.allFinite() && f.root_rot.coeffs().allFinite() && f.dof_pos.allFinite();
-    for (int b = 0; b < sim::kNumBodies; ++b)
+    for (int b = 0; b < humanoid::kNumBodies; ++b)
       finite = finite && f.body_pos[b].allFinite() && f.body_rot[b].coeffs().allFinite();
     if (!finite) ThrowInputError(source, field, "finite numbers", "NaN or infinity");
   }
@@ -56,15 +56,16 @@ void MotionRecord::Validate(const std::string& source) const {
 // Builder.
 
 struct MotionRecordBuilder::Scratch {
-  sim::MjDataPtr data;
-  sim::BodyStates bodies;
+  humanoid::MjDataPtr data;
+  humanoid::BodyStates bodies;
 };
 
-MotionRecordBuilder::MotionRecordBuilder(std::shared_ptr<const sim::Humanoid> humanoid, double fps)
+MotionRecordBuilder::MotionRecordBuilder(std::shared_ptr<const humanoid::Humanoid> humanoid,
+                                         double fps)
     : humanoid_(humanoid ? std::move(humanoid) : motion::HumanoidSkeleton::DefaultHumanoid()),
       scratch_(std::make_unique<Scratch>()) {
   SIMS_CHECK_MSG(fps > 0, "MotionRecordBuilder needs a positive fps");
-  scratch_->data = sim::MakeData(humanoid_->model());
+  scratch_->data = humanoid::MakeData(humanoid_->model());
   record_.fps = fps;
 }
 
@@ -74,14 +75,14 @@ void MotionRecordBuilder::SetTitle(const std::string& title) { record_.title = t
 
 void MotionRecordBuilder::SetScene(const SceneRef& scene) { record_.scene = scene; }
 
-int MotionRecordBuilder::AddFrame(const sim::HumanoidPose& pose) {
-  sim::ForwardKinematics(*humanoid_, pose, scratch_->data.get(), &scratch_->bodies);
+int MotionRecordBuilder::AddFrame(const humanoid::HumanoidPose& pose) {
+  humanoid::ForwardKinematics(*humanoid_, pose, scratch_->data.get(), &scratch_->bodies);
   RecordFrame f;
   f.time = record_.num_frames() / record_.fps;
   f.root_pos = pose.root_pos;
   f.root_rot = pose.root_rot.normalized();
   f.dof_pos = pose.dof_pos;
-  for (int b = 0; b < sim::kNumBodies; ++b) {
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
     f.body_pos[b] = scratch_->bodies.pos[b];
     f.body_rot[b] = scratch_->bodies.rot[b].normalized();
   }
@@ -219,20 +220,20 @@ json MotionRecordToJson(const MotionRecord& record) {
   j["scene"] = {{"name", record.scene.name}, {"source", record.scene.source}};
   const auto& skel = motion::HumanoidSkeleton::Default();
   json bodies = json::array(), parents = json::array(), dofs = json::array();
-  for (int b = 0; b < sim::kNumBodies; ++b) {
-    bodies.push_back(sim::BodyNames()[b]);
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
+    bodies.push_back(humanoid::BodyNames()[b]);
     parents.push_back(skel.parent[b]);
   }
-  for (const char* d : sim::DofNames()) dofs.push_back(d);
+  for (const char* d : humanoid::DofNames()) dofs.push_back(d);
   j["skeleton"] = {{"bodies", bodies}, {"parents", parents}, {"dofs", dofs},
                    {"up", "z"},        {"units", "m"},       {"quaternion", "wxyz"}};
   j["num_frames"] = record.num_frames();
   json frames = json::array();
   for (const RecordFrame& f : record.frames) {
     json dof = json::array();
-    for (int i = 0; i < sim::kNumDofs; ++i) dof.push_back(Round6(f.dof_pos[i]));
+    for (int i = 0; i < humanoid::kNumDofs; ++i) dof.push_back(Round6(f.dof_pos[i]));
     json bp = json::array(), br = json::array();
-    for (int b = 0; b < sim::kNumBodies; ++b) {
+    for (int b = 0; b < humanoid::kNumBodies; ++b) {
       bp.push_back(Vec(f.body_pos[b]));
       br.push_back(Quat(f.body_rot[b]));
     }
@@ -281,9 +282,9 @@ MotionRecord MotionRecordFromJson(const json& j, const std::string& source) {
   if (auto it = j.find("skeleton"); it != j.end()) {
     // The skeleton block documents the layout; a record from another body layout is refused.
     const json& bodies = r.Get(*it, "skeleton", "bodies");
-    bool same = bodies.is_array() && bodies.size() == sim::kNumBodies;
-    for (int b = 0; same && b < sim::kNumBodies; ++b)
-      same = bodies[b].is_string() && bodies[b].get<std::string>() == sim::BodyNames()[b];
+    bool same = bodies.is_array() && bodies.size() == humanoid::kNumBodies;
+    for (int b = 0; same && b < humanoid::kNumBodies; ++b)
+      same = bodies[b].is_string() && bodies[b].get<std::string>() == humanoid::BodyNames()[b];
     if (!same)
       r.Fail("skeleton.bodies", "the 15 AMP body names in order (pelvis, torso, ...)", &bodies);
   }
@@ -301,14 +302,14 @@ MotionRecord MotionRecordFromJson(const json& j, const std::string& source) {
     f.time = r.Number(r.Get(fj, p, "t"), p + ".t");
     f.root_pos = r.Array<3>(r.Get(fj, p, "root_pos"), p + ".root_pos");
     f.root_rot = r.Quaternion(r.Get(fj, p, "root_rot"), p + ".root_rot");
-    f.dof_pos = r.Array<sim::kNumDofs>(r.Get(fj, p, "dof_pos"), p + ".dof_pos");
+    f.dof_pos = r.Array<humanoid::kNumDofs>(r.Get(fj, p, "dof_pos"), p + ".dof_pos");
     const json& bp = r.Get(fj, p, "body_pos");
     const json& br = r.Get(fj, p, "body_rot");
-    if (!bp.is_array() || bp.size() != sim::kNumBodies)
+    if (!bp.is_array() || bp.size() != humanoid::kNumBodies)
       r.Fail(p + ".body_pos", "15 [x, y, z] arrays", &bp);
-    if (!br.is_array() || br.size() != sim::kNumBodies)
+    if (!br.is_array() || br.size() != humanoid::kNumBodies)
       r.Fail(p + ".body_rot", "15 [w, x, y, z] arrays", &br);
-    for (int b = 0; b < sim::kNumBodies; ++b) {
+    for (int b = 0; b < humanoid::kNumBodies; ++b) {
       f.body_pos[b] = r.Array<3>(bp[b], p + ".body_pos[" + std::to_string(b) + "]");
       f.body_rot[b] = r.Quaternion(br[b], p + ".body_rot[" + std::to_string(b) + "]");
     }
@@ -399,7 +400,7 @@ motion::MotionClip RecordToClip(const MotionRecord& record) {
 }
 
 MotionRecord RecordFromClip(const motion::MotionClip& clip, double fps,
-                            std::shared_ptr<const sim::Humanoid> humanoid) {
+                            std::shared_ptr<const humanoid::Humanoid> humanoid) {
   if (clip.num_frames() == 0)
     ThrowInputError(clip.meta().name, "frames", "at least one frame", "none");
   MotionRecordBuilder builder(std::move(humanoid), fps);

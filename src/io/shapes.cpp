@@ -107,9 +107,9 @@ uint32_t ShapeMesh::AddVertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n
   return num_vertices() - 1;
 }
 
-std::array<ShapeMesh, sim::kNumBodies> HumanoidBodyShapes(const sim::Humanoid& humanoid,
-                                                          int segments) {
-  std::array<ShapeMesh, sim::kNumBodies> out;
+std::array<ShapeMesh, humanoid::kNumBodies> HumanoidBodyShapes(const humanoid::Humanoid& humanoid,
+                                                               int segments) {
+  std::array<ShapeMesh, humanoid::kNumBodies> out;
   const mjModel* m = humanoid.model();
   segments = std::max(6, segments);
   for (int g = 0; g < m->ngeom; ++g) {

@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "sims/humanoid/humanoid.h"
 #include "sims/scene/mesh.h"
-#include "sims/sim/humanoid.h"
 
 namespace sims::io {
 
@@ -26,8 +26,8 @@ struct ShapeMesh {
 };
 
 /// The humanoid's geoms (spheres, capsules, boxes, ...) merged per AMP body, in body frame.
-std::array<ShapeMesh, sim::kNumBodies> HumanoidBodyShapes(const sim::Humanoid& humanoid,
-                                                          int segments = 16);
+std::array<ShapeMesh, humanoid::kNumBodies> HumanoidBodyShapes(const humanoid::Humanoid& humanoid,
+                                                               int segments = 16);
 
 /// One vertex per triangle corner with the face normal; degenerate triangles are dropped.
 ShapeMesh FlatShadedMesh(const scene::TriangleMesh& mesh);

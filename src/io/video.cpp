@@ -11,10 +11,10 @@
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/progress.h"
+#include "sims/humanoid/humanoid.h"
+#include "sims/humanoid/state.h"
 #include "sims/io/subprocess.h"
-#include "sims/sim/humanoid.h"
 #include "sims/sim/scene_physics.h"
-#include "sims/sim/state.h"
 
 namespace sims::io {
 
@@ -179,13 +179,13 @@ constexpr double kCameraClearance = 0.3;
 // Furniture and wall pieces between the camera and the character become see-through, so the
 // camera never needs to dodge them. Segments stop short of the body so the chair the
 // character sits on stays solid.
-void FadeOccluders(const mjModel* m, const mjData* d, const sim::Humanoid& h, double alpha,
+void FadeOccluders(const mjModel* m, const mjData* d, const humanoid::Humanoid& h, double alpha,
                    mjvScene* scn) {
   mjtNum head[3], fwd[3], up[3];
   mjv_cameraInModel(head, fwd, up, scn);
   const Eigen::Vector3d cam(head[0], head[1], head[2]);
   std::vector<Eigen::Vector3d> targets;
-  for (int b : {sim::kPelvis, sim::kTorso, sim::kHead}) {
+  for (int b : {humanoid::kPelvis, humanoid::kTorso, humanoid::kHead}) {
     const mjtNum* x = d->xpos + 3 * h.body_id(b);
     Eigen::Vector3d p(x[0], x[1], x[2]);
     const Eigen::Vector3d to_cam = cam - p;
@@ -226,7 +226,7 @@ std::string Fixed(double v, int digits) {
   return buf;
 }
 
-VideoStats RenderModel(const MotionRecord& rec, sim::StaticGeometry geometry,
+VideoStats RenderModel(const MotionRecord& rec, humanoid::StaticGeometry geometry,
                        const std::filesystem::path& mp4, const VideoOptions& options) {
   ValidateConfig(options, "VideoOptions");
   if (rec.frames.empty()) ThrowInputError("motion record", "frames", "at least one frame", "none");
@@ -237,7 +237,7 @@ VideoStats RenderModel(const MotionRecord& rec, sim::StaticGeometry geometry,
   const auto t_start = Clock::now();
   const int W = options.width, H = options.height;
 
-  const sim::MjModelPtr built = sim::BuildModel(geometry);
+  const humanoid::MjModelPtr built = humanoid::BuildModel(geometry);
   mjModel* mutable_model = mj_copyModel(nullptr, built.get());
   SIMS_CHECK(mutable_model != nullptr);
   mutable_model->vis.global.offwidth = std::max(W, 16);
@@ -245,10 +245,10 @@ VideoStats RenderModel(const MotionRecord& rec, sim::StaticGeometry geometry,
   // Software rasterisation pays per pixel: a small shadow map and no MSAA by default.
   mutable_model->vis.quality.shadowsize = options.shadow_size;
   mutable_model->vis.quality.offsamples = options.multisamples;
-  const sim::MjModelPtr model(mutable_model, sim::MjModelDeleter());
-  const sim::Humanoid humanoid(model);
+  const humanoid::MjModelPtr model(mutable_model, humanoid::MjModelDeleter());
+  const humanoid::Humanoid humanoid(model);
   const mjModel* m = model.get();
-  sim::MjDataPtr data = sim::MakeData(m);
+  humanoid::MjDataPtr data = humanoid::MakeData(m);
 
   OsMesaContext gl(W, H);
   MjvState vis(m, m->ngeom + 64, H > 600 ? mjFONTSCALE_150 : mjFONTSCALE_100);
@@ -326,18 +326,19 @@ VideoStats RenderModel(const MotionRecord& rec, sim::StaticGeometry geometry,
     const double t = i / out_fps;
     const int fi = std::clamp(static_cast<int>(std::lround(t * rec_fps)), 0, rec.num_frames() - 1);
     const RecordFrame& f = rec.frames[fi];
-    sim::HumanoidPose pose;
+    humanoid::HumanoidPose pose;
     pose.root_pos = f.root_pos;
     pose.root_rot = f.root_rot;
     pose.dof_pos = f.dof_pos;
-    sim::WritePose(humanoid, pose, data.get());
+    humanoid::WritePose(humanoid, pose, data.get());
     mj_kinematics(m, data.get());
     mj_comPos(m, data.get());
     mj_camlight(m, data.get());
 
     const Eigen::Vector3d& c = roots[fi];
     for (int k = 0; k < 2; ++k) vis.cam.lookat[k] = c[k];
-    vis.cam.lookat[2] = std::max(0.3, c.z() * options.look_at_height / sim::kDefaultRootHeight);
+    vis.cam.lookat[2] =
+        std::max(0.3, c.z() * options.look_at_height / humanoid::kDefaultRootHeight);
     const double yaw = options.follow_heading ? heading[fi] : 0.0;
     // MuJoCo's azimuth is the direction the camera looks; it stands opposite to it.
     vis.cam.azimuth = (yaw * 180.0 / M_PI) + options.view_angle_deg + 180.0;
@@ -416,7 +417,7 @@ VideoStats RenderVideo(const MotionRecord& record, const scene::Scene& scene,
   return RenderModel(record, sim::CompileSceneGeometry(scene), mp4, options);
 }
 
-VideoStats RenderVideo(const MotionRecord& record, const sim::StaticGeometry& geometry,
+VideoStats RenderVideo(const MotionRecord& record, const humanoid::StaticGeometry& geometry,
                        const std::filesystem::path& mp4, const VideoOptions& options) {
   return RenderModel(record, geometry, mp4, options);
 }

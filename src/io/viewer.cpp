@@ -8,8 +8,8 @@
 #include "sims/core/environment.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/io/subprocess.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::io {
 
@@ -88,8 +88,8 @@ void InstallViewer(const std::filesystem::path& dir, const ViewerOptions& option
       options.assets_dir.empty() ? AssetPath("viewer") : options.assets_dir;
   InstallThree(dir, options.three_archive.empty() ? FindThreeArchive() : options.three_archive);
   // index.html last: it is what a person opens, and it needs everything else.
-  WriteFileAtomic(dir / "viewer.js", sim::ReadTextFile(assets / "viewer.js"));
-  WriteFileAtomic(dir / "index.html", sim::ReadTextFile(assets / "index.html"));
+  WriteFileAtomic(dir / "viewer.js", humanoid::ReadTextFile(assets / "viewer.js"));
+  WriteFileAtomic(dir / "index.html", humanoid::ReadTextFile(assets / "index.html"));
 }
 
 }  // namespace sims::io

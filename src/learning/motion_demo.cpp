@@ -1,6 +1,6 @@
 #include "sims/learning/motion_demo.h"
 
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::learning {
 
@@ -13,7 +13,7 @@ MotionDemoSource::MotionDemoSource(std::shared_ptr<const motion::MotionLibrary> 
   if (styles) z_ = styles->all();
 }
 
-int MotionDemoSource::amp_obs_dim() const { return steps_ * sim::kAmpObsStepDim; }
+int MotionDemoSource::amp_obs_dim() const { return steps_ * humanoid::kAmpObsStepDim; }
 
 void MotionDemoSource::Sample(int n, Rng& rng, float* amp_out, int* style_out) const {
   library_->SampleAmpDemos(rng, n, amp_out, style_out, threads_, steps_);

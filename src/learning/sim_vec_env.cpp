@@ -10,11 +10,11 @@ SimVecEnv::SimVecEnv(std::shared_ptr<sim::BatchedEnv> env) : env_(std::move(env)
 std::vector<sim::ObsSegment> SimVecEnv::obs_segments() const {
   sim::ObsSegment self;
   self.name = "self";
-  self.size = sim::kSelfObsDim;
+  self.size = humanoid::kSelfObsDim;
   std::vector<sim::ObsSegment> out{self};
   if (env_->task()) {
     for (auto s : env_->task()->obs_segments()) {
-      s.offset += sim::kSelfObsDim;
+      s.offset += humanoid::kSelfObsDim;
       if (s.size > 0) out.push_back(s);
     }
   }
@@ -27,8 +27,8 @@ void SimVecEnv::Step(const float* actions) {
 }
 
 std::vector<float> SimVecEnv::initial_action_mean() const {
-  std::vector<float> a(sim::kNumDofs);
-  const double standing[sim::kNumDofs] = {0};
+  std::vector<float> a(humanoid::kNumDofs);
+  const double standing[humanoid::kNumDofs] = {0};
   env_->humanoid().TargetsToAction(standing, a.data());
   return a;
 }

@@ -8,17 +8,17 @@ namespace sims::motion {
 
 namespace {
 
-std::array<int, sim::kNumDofs> BuildPartners() {
-  std::array<int, sim::kNumDofs> partner{};
-  const auto& names = sim::DofNames();
-  for (int i = 0; i < sim::kNumDofs; ++i) {
+std::array<int, humanoid::kNumDofs> BuildPartners() {
+  std::array<int, humanoid::kNumDofs> partner{};
+  const auto& names = humanoid::DofNames();
+  for (int i = 0; i < humanoid::kNumDofs; ++i) {
     std::string n = names[i];
     if (n.rfind("left_", 0) == 0)
       n = "right_" + n.substr(5);
     else if (n.rfind("right_", 0) == 0)
       n = "left_" + n.substr(6);
     partner[i] = -1;
-    for (int k = 0; k < sim::kNumDofs; ++k)
+    for (int k = 0; k < humanoid::kNumDofs; ++k)
       if (n == names[k]) partner[i] = k;
     SIMS_CHECK(partner[i] >= 0);
   }
@@ -44,12 +44,12 @@ std::string MatchCase(const std::string& like, std::string word) {
 }  // namespace
 
 int MirrorDof(int i) {
-  static const std::array<int, sim::kNumDofs> partner = BuildPartners();
+  static const std::array<int, humanoid::kNumDofs> partner = BuildPartners();
   return partner[i];
 }
 
 double MirrorDofSign(int i) {
-  for (const sim::JointSpec& js : sim::Joints()) {
+  for (const humanoid::JointSpec& js : humanoid::Joints()) {
     if (i < js.dof_offset || i >= js.dof_offset + js.dof_count) continue;
     if (js.dof_count == 1) return 1.0;
     return (i - js.dof_offset) == 1 ? 1.0 : -1.0;
@@ -61,17 +61,18 @@ MotionFrame MirrorFrame(const MotionFrame& f) {
   MotionFrame m;
   m.root_pos = Eigen::Vector3d(f.root_pos.x(), -f.root_pos.y(), f.root_pos.z());
   m.root_rot = Eigen::Quaterniond(f.root_rot.w(), -f.root_rot.x(), f.root_rot.y(), -f.root_rot.z());
-  for (int i = 0; i < sim::kNumDofs; ++i) m.dof_pos[MirrorDof(i)] = MirrorDofSign(i) * f.dof_pos[i];
+  for (int i = 0; i < humanoid::kNumDofs; ++i)
+    m.dof_pos[MirrorDof(i)] = MirrorDofSign(i) * f.dof_pos[i];
   return m;
 }
 
-sim::HumanoidPose MirrorPose(const sim::HumanoidPose& p) {
-  sim::HumanoidPose m;
+humanoid::HumanoidPose MirrorPose(const humanoid::HumanoidPose& p) {
+  humanoid::HumanoidPose m;
   m.root_pos = Eigen::Vector3d(p.root_pos.x(), -p.root_pos.y(), p.root_pos.z());
   m.root_rot = Eigen::Quaterniond(p.root_rot.w(), -p.root_rot.x(), p.root_rot.y(), -p.root_rot.z());
   m.root_lin_vel = Eigen::Vector3d(p.root_lin_vel.x(), -p.root_lin_vel.y(), p.root_lin_vel.z());
   m.root_ang_vel = Eigen::Vector3d(-p.root_ang_vel.x(), p.root_ang_vel.y(), -p.root_ang_vel.z());
-  for (int i = 0; i < sim::kNumDofs; ++i) {
+  for (int i = 0; i < humanoid::kNumDofs; ++i) {
     m.dof_pos[MirrorDof(i)] = MirrorDofSign(i) * p.dof_pos[i];
     m.dof_vel[MirrorDof(i)] = MirrorDofSign(i) * p.dof_vel[i];
   }

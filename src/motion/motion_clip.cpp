@@ -31,7 +31,7 @@ void PackFrame(const MotionFrame& f, float* out) {
   out[4] = static_cast<float>(f.root_rot.x());
   out[5] = static_cast<float>(f.root_rot.y());
   out[6] = static_cast<float>(f.root_rot.z());
-  for (int k = 0; k < sim::kNumDofs; ++k) out[7 + k] = static_cast<float>(f.dof_pos[k]);
+  for (int k = 0; k < humanoid::kNumDofs; ++k) out[7 + k] = static_cast<float>(f.dof_pos[k]);
 }
 
 template <typename T>
@@ -39,7 +39,7 @@ MotionFrame UnpackFrame(const T* in) {
   MotionFrame f;
   f.root_pos = Eigen::Vector3d(in[0], in[1], in[2]);
   f.root_rot = Eigen::Quaterniond(in[3], in[4], in[5], in[6]);
-  for (int k = 0; k < sim::kNumDofs; ++k) f.dof_pos[k] = in[7 + k];
+  for (int k = 0; k < humanoid::kNumDofs; ++k) f.dof_pos[k] = in[7 + k];
   return f;
 }
 
@@ -146,9 +146,9 @@ void MotionClip::ComputeVelocities() {
   root_ang_vel_ = GaussianSmooth(root_ang_vel_, 2.0);
 }
 
-sim::HumanoidPose MotionClip::FramePose(int i) const {
+humanoid::HumanoidPose MotionClip::FramePose(int i) const {
   SIMS_CHECK(i >= 0 && i < num_frames());
-  sim::HumanoidPose p;
+  humanoid::HumanoidPose p;
   p.root_pos = frames_[i].root_pos;
   p.root_rot = frames_[i].root_rot;
   p.dof_pos = frames_[i].dof_pos;
@@ -158,7 +158,7 @@ sim::HumanoidPose MotionClip::FramePose(int i) const {
   return p;
 }
 
-sim::HumanoidPose MotionClip::SamplePose(double t) const {
+humanoid::HumanoidPose MotionClip::SamplePose(double t) const {
   SIMS_CHECK(!frames_.empty());
   const double f = std::clamp(t, 0.0, duration()) * fps_;
   const int f0 = std::min(static_cast<int>(std::floor(f)), num_frames() - 1);
@@ -167,7 +167,7 @@ sim::HumanoidPose MotionClip::SamplePose(double t) const {
   if (f0 == f1 || a < 1e-12) return FramePose(f0);
   const MotionFrame& x = frames_[f0];
   const MotionFrame& y = frames_[f1];
-  sim::HumanoidPose p;
+  humanoid::HumanoidPose p;
   p.root_pos = (1 - a) * x.root_pos + a * y.root_pos;
   p.root_rot = x.root_rot.slerp(a, y.root_rot).normalized();
   p.dof_pos = (1 - a) * x.dof_pos + a * y.dof_pos;
@@ -182,7 +182,7 @@ MotionClip MotionClip::Resampled(double fps) const {
   const int n = static_cast<int>(std::floor(duration() * fps + 1e-6)) + 1;
   std::vector<MotionFrame> out(n);
   for (int k = 0; k < n; ++k) {
-    const sim::HumanoidPose p = SamplePose(k / fps);
+    const humanoid::HumanoidPose p = SamplePose(k / fps);
     out[k].root_pos = p.root_pos;
     out[k].root_rot = p.root_rot;
     out[k].dof_pos = p.dof_pos;
@@ -222,7 +222,7 @@ void SaveClip(const MotionClip& clip, const fs::path& json_path) {
   j["data"] = bin_path.filename().string();
   j["frame_layout"] = "float32 little-endian rows: root_pos xyz, root_rot wxyz, dof_pos[28]";
   j["dof_names"] = nlohmann::json::array();
-  for (const char* n : sim::DofNames()) j["dof_names"].push_back(n);
+  for (const char* n : humanoid::DofNames()) j["dof_names"].push_back(n);
   j["meta"] = ConfigToJson(clip.meta());
   WriteJsonFile(json_path, j);
 }
@@ -249,9 +249,10 @@ MotionClip LoadClip(const fs::path& json_path) {
     } catch (const std::exception&) {
       ThrowInputError(src, "dof_names", "an array of strings");
     }
-    bool same = names.size() == sim::kNumDofs;
-    for (int k = 0; same && k < sim::kNumDofs; ++k) same = names[k] == sim::DofNames()[k];
-    if (!same) ThrowInputError(src, "dof_names", "the 28 hinge names of sim::DofNames() in order");
+    bool same = names.size() == humanoid::kNumDofs;
+    for (int k = 0; same && k < humanoid::kNumDofs; ++k) same = names[k] == humanoid::DofNames()[k];
+    if (!same)
+      ThrowInputError(src, "dof_names", "the 28 hinge names of humanoid::DofNames() in order");
   }
   MotionMeta meta;
   if (j.contains("meta")) meta = ConfigFromJson<MotionMeta>(j["meta"], src + " (meta)");
@@ -315,11 +316,12 @@ MotionClip LoadClip(const fs::path& json_path) {
   }
 }
 
-std::vector<sim::BodyStates> ClipBodyStates(const MotionClip& clip, const sim::Humanoid& humanoid) {
-  sim::MjDataPtr data = sim::MakeData(humanoid.model());
-  std::vector<sim::BodyStates> out(clip.num_frames());
+std::vector<humanoid::BodyStates> ClipBodyStates(const MotionClip& clip,
+                                                 const humanoid::Humanoid& humanoid) {
+  humanoid::MjDataPtr data = humanoid::MakeData(humanoid.model());
+  std::vector<humanoid::BodyStates> out(clip.num_frames());
   for (int i = 0; i < clip.num_frames(); ++i)
-    sim::ForwardKinematics(humanoid, clip.FramePose(i), data.get(), &out[i]);
+    humanoid::ForwardKinematics(humanoid, clip.FramePose(i), data.get(), &out[i]);
   return out;
 }
 

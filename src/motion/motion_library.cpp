@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "sims/core/error.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/motion/mirror.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::motion {
 
@@ -40,7 +40,7 @@ void SaveManifest(const fs::path& path, const MotionManifest& manifest) {
   SaveConfig(path, manifest);
 }
 
-MotionLibrary::MotionLibrary(std::shared_ptr<const sim::Humanoid> humanoid,
+MotionLibrary::MotionLibrary(std::shared_ptr<const humanoid::Humanoid> humanoid,
                              std::vector<MotionClip> clips, std::vector<double> weights,
                              const MotionLibraryOptions& options)
     : humanoid_(humanoid ? std::move(humanoid) : HumanoidSkeleton::DefaultHumanoid()),
@@ -65,7 +65,7 @@ MotionLibrary::MotionLibrary(std::shared_ptr<const sim::Humanoid> humanoid,
 }
 
 MotionLibrary MotionLibrary::Load(const fs::path& manifest_path,
-                                  std::shared_ptr<const sim::Humanoid> humanoid,
+                                  std::shared_ptr<const humanoid::Humanoid> humanoid,
                                   const MotionLibraryOptions& options) {
   const MotionManifest manifest = LoadManifest(manifest_path);
   if (manifest.clips.empty())
@@ -95,8 +95,8 @@ double MotionLibrary::total_duration() const {
   return d;
 }
 
-sim::ObsOptions MotionLibrary::obs_options() const {
-  sim::ObsOptions o;
+humanoid::ObsOptions MotionLibrary::obs_options() const {
+  humanoid::ObsOptions o;
   o.root_height = options_.root_height_obs;
   o.local_root_rot = options_.local_root_obs;
   return o;
@@ -129,26 +129,18 @@ ReferenceState MotionLibrary::SampleReferenceState(Rng& rng, double max_fraction
   return StateAt(clip, SampleTime(clip, rng, max_fraction));
 }
 
-void MotionLibrary::SampleInitialState(Rng& rng, sim::InitialState* init,
-                                       double max_fraction) const {
-  ReferenceState s = SampleReferenceState(rng, max_fraction);
-  init->pose = s.pose;
-  init->history = std::move(s.history);
-  init->reference = true;
-}
-
 void MotionLibrary::AmpObservation(int clip, double t, mjData* scratch, float* out) const {
-  const sim::HumanoidPose pose = clips_[clip].SamplePose(t);
-  sim::BodyStates bodies;
-  sim::ForwardKinematics(*humanoid_, pose, scratch, &bodies);
-  sim::ComputeAmpObservation(pose, bodies, obs_options(), out);
+  const humanoid::HumanoidPose pose = clips_[clip].SamplePose(t);
+  humanoid::BodyStates bodies;
+  humanoid::ForwardKinematics(*humanoid_, pose, scratch, &bodies);
+  humanoid::ComputeAmpObservation(pose, bodies, obs_options(), out);
 }
 
 void MotionLibrary::AmpWindow(int clip, double t, mjData* scratch, float* out, int steps) const {
   if (steps <= 0) steps = options_.amp_steps;
   for (int k = 0; k < steps; ++k)
     AmpObservation(clip, std::max(t - k * options_.control_dt, 0.0), scratch,
-                   out + static_cast<std::size_t>(k) * sim::kAmpObsStepDim);
+                   out + static_cast<std::size_t>(k) * humanoid::kAmpObsStepDim);
 }
 
 void MotionLibrary::SampleAmpDemos(Rng& rng, int count, float* out, int* clip_ids, int threads,
@@ -163,11 +155,11 @@ void MotionLibrary::SampleAmpDemos(Rng& rng, int count, float* out, int* clip_id
     const double len = clips_[ids[i]].duration();
     times[i] = len > span ? rng.Uniform(span, len) : rng.Uniform() * len;
   }
-  const std::size_t width = static_cast<std::size_t>(steps) * sim::kAmpObsStepDim;
+  const std::size_t width = static_cast<std::size_t>(steps) * humanoid::kAmpObsStepDim;
   threads = std::max(1, threads);
 #pragma omp parallel num_threads(threads)
   {
-    sim::MjDataPtr scratch = sim::MakeData(humanoid_->model());
+    humanoid::MjDataPtr scratch = humanoid::MakeData(humanoid_->model());
 #pragma omp for schedule(static)
     for (int i = 0; i < count; ++i)
       AmpWindow(ids[i], times[i], scratch.get(), out + i * width, steps);
@@ -179,11 +171,11 @@ std::vector<float> MotionLibrary::ClipAmpFeatures(int clip, double fps) const {
   SIMS_CHECK(fps > 0);
   const MotionClip& c = clips_[clip];
   const int n = static_cast<int>(std::floor(c.duration() * fps + 1e-6)) + 1;
-  std::vector<float> out(static_cast<std::size_t>(n) * sim::kAmpObsStepDim);
-  sim::MjDataPtr scratch = sim::MakeData(humanoid_->model());
+  std::vector<float> out(static_cast<std::size_t>(n) * humanoid::kAmpObsStepDim);
+  humanoid::MjDataPtr scratch = humanoid::MakeData(humanoid_->model());
   for (int i = 0; i < n; ++i)
     AmpObservation(clip, i / fps, scratch.get(),
-                   out.data() + static_cast<std::size_t>(i) * sim::kAmpObsStepDim);
+                   out.data() + static_cast<std::size_t>(i) * humanoid::kAmpObsStepDim);
   return out;
 }
 

@@ -6,22 +6,25 @@
 #include <cstdio>
 
 #include "sims/core/error.h"
+#include "sims/humanoid/features.h"
 #include "sims/motion/rotation.h"
-#include "sims/sim/features.h"
 
 namespace sims::motion {
 
 namespace {
 
-constexpr int kRequiredBodies[] = {sim::kPelvis,    sim::kRightThigh, sim::kRightShin,
-                                   sim::kRightFoot, sim::kLeftThigh,  sim::kLeftShin,
-                                   sim::kLeftFoot};
+constexpr int kRequiredBodies[] = {
+    humanoid::kPelvis,    humanoid::kRightThigh, humanoid::kRightShin, humanoid::kRightFoot,
+    humanoid::kLeftThigh, humanoid::kLeftShin,   humanoid::kLeftFoot};
 // Limb bodies whose rest rotation can be aligned from the bone to their child.
-constexpr std::pair<int, int> kLimbChild[] = {
-    {sim::kRightUpperArm, sim::kRightLowerArm}, {sim::kRightLowerArm, sim::kRightHand},
-    {sim::kLeftUpperArm, sim::kLeftLowerArm},   {sim::kLeftLowerArm, sim::kLeftHand},
-    {sim::kRightThigh, sim::kRightShin},        {sim::kRightShin, sim::kRightFoot},
-    {sim::kLeftThigh, sim::kLeftShin},          {sim::kLeftShin, sim::kLeftFoot}};
+constexpr std::pair<int, int> kLimbChild[] = {{humanoid::kRightUpperArm, humanoid::kRightLowerArm},
+                                              {humanoid::kRightLowerArm, humanoid::kRightHand},
+                                              {humanoid::kLeftUpperArm, humanoid::kLeftLowerArm},
+                                              {humanoid::kLeftLowerArm, humanoid::kLeftHand},
+                                              {humanoid::kRightThigh, humanoid::kRightShin},
+                                              {humanoid::kRightShin, humanoid::kRightFoot},
+                                              {humanoid::kLeftThigh, humanoid::kLeftShin},
+                                              {humanoid::kLeftShin, humanoid::kLeftFoot}};
 
 bool ParseAxis(const std::string& s, Eigen::Vector3d* v) {
   if (s.empty() || s.size() > 2) return false;
@@ -97,13 +100,14 @@ void RetargetConfig::Validate() const {
   Require(clamp_warning_deg >= 0, "clamp_warning_deg", "a non-negative angle");
   for (const auto& [body, j] : joints) {
     bool known = false;
-    for (const char* n : sim::BodyNames()) known = known || body == n;
+    for (const char* n : humanoid::BodyNames()) known = known || body == n;
     std::string names;
-    for (const char* n : sim::BodyNames()) names += std::string(names.empty() ? "" : ", ") + n;
+    for (const char* n : humanoid::BodyNames()) names += std::string(names.empty() ? "" : ", ") + n;
     Require(known, "joints." + body, "a humanoid body name (" + names + ")");
   }
   for (int b : kRequiredBodies)
-    Require(joints.count(sim::BodyNames()[b]) > 0, std::string("joints.") + sim::BodyNames()[b],
+    Require(joints.count(humanoid::BodyNames()[b]) > 0,
+            std::string("joints.") + humanoid::BodyNames()[b],
             "a mapping (pelvis, thighs, shins and feet are required)");
 }
 
@@ -121,10 +125,10 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
   SIMS_CHECK(bvh.num_frames > 0 && !bvh.joints.empty());
 
   // Resolve the map.
-  std::array<int, sim::kNumBodies> src{};
+  std::array<int, humanoid::kNumBodies> src{};
   src.fill(-1);
   for (const auto& [body, j] : config.joints) {
-    const int b = sim::BodyByName(body);
+    const int b = humanoid::BodyByName(body);
     src[b] = FindJointFlexible(bvh, j.bvh);
     if (src[b] < 0) {
       std::string c;
@@ -147,8 +151,9 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
   double scale = config.scale;
   if (scale <= 0) {
     double bvh_leg = 0;
-    for (auto [t, s, f] : {std::array<int, 3>{sim::kRightThigh, sim::kRightShin, sim::kRightFoot},
-                           std::array<int, 3>{sim::kLeftThigh, sim::kLeftShin, sim::kLeftFoot}})
+    for (auto [t, s, f] :
+         {std::array<int, 3>{humanoid::kRightThigh, humanoid::kRightShin, humanoid::kRightFoot},
+          std::array<int, 3>{humanoid::kLeftThigh, humanoid::kLeftShin, humanoid::kLeftFoot}})
       bvh_leg += (rest_pos[src[s]] - rest_pos[src[t]]).norm() +
                  (rest_pos[src[f]] - rest_pos[src[s]]).norm();
     bvh_leg /= 2;
@@ -163,11 +168,11 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
   SkeletonForwardKinematics(skel, Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(),
                             DofVector::Zero(), &zero);
   // Rest corrections: R_body = A·G_joint·Aᵀ · Q_body.
-  std::array<Eigen::Quaterniond, sim::kNumBodies> Q;
-  for (int b = 0; b < sim::kNumBodies; ++b) {
+  std::array<Eigen::Quaterniond, humanoid::kNumBodies> Q;
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
     Q[b] = Eigen::Quaterniond::Identity();
     if (src[b] < 0) continue;
-    const RetargetJoint& rj = config.joints.at(sim::BodyNames()[b]);
+    const RetargetJoint& rj = config.joints.at(humanoid::BodyNames()[b]);
     if (rj.auto_align) {
       for (auto [body, child] : kLimbChild) {
         if (body != b || src[child] < 0) continue;
@@ -182,26 +187,26 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
                       EulerToMatrix({0, 1, 2}, Eigen::Vector3d(c[0], c[1], c[2]) * (M_PI / 180.0)));
   }
 
-  const int lt = src[sim::kLeftThigh], rt = src[sim::kRightThigh];
+  const int lt = src[humanoid::kLeftThigh], rt = src[humanoid::kRightThigh];
   const Eigen::Vector3d hip_mid_local =
-      0.5 * (skel.offset[sim::kLeftThigh] + skel.offset[sim::kRightThigh]);
+      0.5 * (skel.offset[humanoid::kLeftThigh] + skel.offset[humanoid::kRightThigh]);
   const double warn = config.clamp_warning_deg * M_PI / 180.0;
-  std::array<int, sim::kNumDofs> clamp_frames{};
-  std::array<double, sim::kNumDofs> clamp_max{};
+  std::array<int, humanoid::kNumDofs> clamp_frames{};
+  std::array<double, humanoid::kNumDofs> clamp_max{};
 
   std::vector<MotionFrame> frames(bvh.num_frames);
   DofVector prev = DofVector::Zero();
   for (int f = 0; f < bvh.num_frames; ++f) {
     BvhGlobalPose(bvh, f, &rot, &pos);
-    std::array<Eigen::Quaterniond, sim::kNumBodies> desired, realized;
-    for (int b = 0; b < sim::kNumBodies; ++b)
+    std::array<Eigen::Quaterniond, humanoid::kNumBodies> desired, realized;
+    for (int b = 0; b < humanoid::kNumBodies; ++b)
       if (src[b] >= 0) desired[b] = qA * rot[src[b]] * qA.conjugate() * Q[b];
     MotionFrame& out = frames[f];
-    out.root_rot = desired[sim::kPelvis].normalized();
+    out.root_rot = desired[humanoid::kPelvis].normalized();
     out.root_pos = scale * (A * (0.5 * (pos[lt] + pos[rt]))) - out.root_rot * hip_mid_local;
     realized[0] = out.root_rot;
     DofVector dofs = prev;
-    for (int b = 1; b < sim::kNumBodies; ++b) {
+    for (int b = 1; b < humanoid::kNumBodies; ++b) {
       const int p = skel.parent[b];
       const Eigen::Quaterniond frame0 = realized[p] * skel.rest[b];
       const int j = skel.joint[b];
@@ -209,7 +214,7 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
         realized[b] = frame0;
         continue;
       }
-      const sim::JointSpec& js = sim::Joints()[j];
+      const humanoid::JointSpec& js = humanoid::Joints()[j];
       const int o = js.dof_offset;
       const Eigen::Quaterniond local =
           src[b] >= 0 ? frame0.conjugate() * desired[b] : Eigen::Quaterniond::Identity();
@@ -220,7 +225,7 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
       } else {
         // Elbows and knees: the hinge angle that best reproduces the child bone direction.
         int child = -1;
-        for (int c = 0; c < sim::kNumBodies; ++c)
+        for (int c = 0; c < humanoid::kNumBodies; ++c)
           if (skel.parent[c] == b) child = c;
         dofs[o] =
             ProjectToYHinge(local, child >= 0 ? skel.offset[child] : Eigen::Vector3d(0, 0, -1));
@@ -239,12 +244,12 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
     out.dof_pos = dofs;
     prev = dofs;
   }
-  for (int k = 0; k < sim::kNumDofs; ++k) {
+  for (int k = 0; k < humanoid::kNumDofs; ++k) {
     if (clamp_frames[k] == 0) continue;
-    ClampStat& cs = report.clamped[sim::DofNames()[k]];
+    ClampStat& cs = report.clamped[humanoid::DofNames()[k]];
     cs.frames = clamp_frames[k];
     cs.max_deg = clamp_max[k] * 180.0 / M_PI;
-    report.warnings.push_back(std::string(sim::DofNames()[k]) + " clamped in " +
+    report.warnings.push_back(std::string(humanoid::DofNames()[k]) + " clamped in " +
                               std::to_string(cs.frames) + " frames (max " + FormatDeg(cs.max_deg) +
                               " deg)");
   }
@@ -272,7 +277,7 @@ MotionClip RetargetBvh(const BvhMotion& bvh, const RetargetConfig& config,
       double flat = 1e9;
       for (bool left : {false, true}) {
         const Eigen::Vector3d up =
-            sp.rot[left ? sim::kLeftFoot : sim::kRightFoot] * Eigen::Vector3d::UnitZ();
+            sp.rot[left ? humanoid::kLeftFoot : humanoid::kRightFoot] * Eigen::Vector3d::UnitZ();
         if (up.z() > std::cos(30 * M_PI / 180)) flat = std::min(flat, foot_sole[left]);
       }
       if (flat < 1e9) flat_soles.push_back(flat);
@@ -323,9 +328,9 @@ BvhMotion HumanoidClipToBvh(const MotionClip& clip, const HumanoidSkeleton& skel
   bvh.frame_time = 1.0 / clip.fps();
   bvh.num_frames = clip.num_frames();
   int ch = 0;
-  for (int b = 0; b < sim::kNumBodies; ++b) {
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
     BvhJoint j;
-    j.name = sim::BodyNames()[b];
+    j.name = humanoid::BodyNames()[b];
     j.parent = skel.parent[b];
     j.offset =
         b == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(options.scale * (P * skel.offset[b]));
@@ -336,12 +341,12 @@ BvhMotion HumanoidClipToBvh(const MotionClip& clip, const HumanoidSkeleton& skel
     j.channel_start = ch;
     ch += static_cast<int>(j.channels.size());
     bool leaf = true;
-    for (int c = 0; c < sim::kNumBodies; ++c) leaf = leaf && skel.parent[c] != b;
+    for (int c = 0; c < humanoid::kNumBodies; ++c) leaf = leaf && skel.parent[c] != b;
     if (leaf) {
       Eigen::Vector3d tip(0, 0, -0.08);  // hands
-      if (b == sim::kHead) tip = Eigen::Vector3d(0, 0, 0.25);
-      if (b == sim::kRightFoot || b == sim::kLeftFoot) {
-        const int side = b == sim::kLeftFoot ? 1 : 0;
+      if (b == humanoid::kHead) tip = Eigen::Vector3d(0, 0, 0.25);
+      if (b == humanoid::kRightFoot || b == humanoid::kLeftFoot) {
+        const int side = b == humanoid::kLeftFoot ? 1 : 0;
         tip = skel.foot_box_center[side] +
               Eigen::Vector3d(skel.foot_box_half[side].x(), 0, -skel.foot_box_half[side].z());
       }
@@ -359,7 +364,7 @@ BvhMotion HumanoidClipToBvh(const MotionClip& clip, const HumanoidSkeleton& skel
     const Eigen::Vector3d r =
         MatrixToEuler(order, P * fr.root_rot.toRotationMatrix() * P.transpose()) * deg;
     for (int k = 0; k < 3; ++k) row[k] = p[k], row[3 + k] = r[k];
-    for (int b = 1; b < sim::kNumBodies; ++b) {
+    for (int b = 1; b < humanoid::kNumBodies; ++b) {
       const BvhJoint& j = bvh.joints[b];
       Eigen::Vector3d a = Eigen::Vector3d::Zero();
       const int jt = skel.joint[b];
@@ -367,7 +372,7 @@ BvhMotion HumanoidClipToBvh(const MotionClip& clip, const HumanoidSkeleton& skel
           skel.rest[b].angularDistance(Eigen::Quaterniond::Identity()) < 1e-12;
       if (jt >= 0 && identity_rest) {
         // The hinge angles are the channel values (x, y, z hinges map to the order's axes).
-        const sim::JointSpec& js = sim::Joints()[jt];
+        const humanoid::JointSpec& js = humanoid::Joints()[jt];
         if (js.dof_count == 3)
           a = fr.dof_pos.segment<3>(js.dof_offset);
         else
@@ -399,7 +404,7 @@ RetargetConfig HumanoidBvhRetargetConfig(const HumanoidBvhOptions& options) {
   c.scale = 1.0 / options.scale;
   c.target_fps = 0;
   c.ground = "none";
-  for (const char* n : sim::BodyNames()) {
+  for (const char* n : humanoid::BodyNames()) {
     RetargetJoint j;
     j.bvh = {n};
     j.auto_align = false;

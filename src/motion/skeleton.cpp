@@ -7,18 +7,18 @@
 #include <vector>
 
 #include "sims/core/error.h"
+#include "sims/humanoid/features.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/motion/rotation.h"
-#include "sims/sim/features.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::motion {
 
 namespace {
 
 // Bodies whose offsets the analytic limb IK assumes to lie along the parent's −z axis.
-constexpr int kStraightBodies[] = {sim::kRightShin,    sim::kRightFoot,     sim::kLeftShin,
-                                   sim::kLeftFoot,     sim::kRightLowerArm, sim::kRightHand,
-                                   sim::kLeftLowerArm, sim::kLeftHand};
+constexpr int kStraightBodies[] = {
+    humanoid::kRightShin,     humanoid::kRightFoot, humanoid::kLeftShin,     humanoid::kLeftFoot,
+    humanoid::kRightLowerArm, humanoid::kRightHand, humanoid::kLeftLowerArm, humanoid::kLeftHand};
 
 Eigen::Vector3d Perpendicular(const Eigen::Vector3d& v, const Eigen::Vector3d& axis,
                               const Eigen::Vector3d& fallback) {
@@ -46,33 +46,35 @@ int ClampDof(const HumanoidSkeleton& skel, int i, double* v) {
 
 }  // namespace
 
-HumanoidSkeleton HumanoidSkeleton::FromHumanoid(const sim::Humanoid& humanoid) {
+HumanoidSkeleton HumanoidSkeleton::FromHumanoid(const humanoid::Humanoid& humanoid) {
   const mjModel* m = humanoid.model();
   HumanoidSkeleton s;
-  for (int b = 0; b < sim::kNumBodies; ++b) {
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
     const int id = humanoid.body_id(b);
     const int pid = m->body_parentid[id];
     s.parent[b] = -1;
-    for (int p = 0; p < sim::kNumBodies; ++p)
+    for (int p = 0; p < humanoid::kNumBodies; ++p)
       if (humanoid.body_id(p) == pid) s.parent[b] = p;
-    SIMS_CHECK_MSG(b == sim::kPelvis || s.parent[b] >= 0, "AMP body parent outside the humanoid");
+    SIMS_CHECK_MSG(b == humanoid::kPelvis || s.parent[b] >= 0,
+                   "AMP body parent outside the humanoid");
     const double* p = m->body_pos + 3 * id;
     const double* q = m->body_quat + 4 * id;
     s.offset[b] = Eigen::Vector3d(p[0], p[1], p[2]);
     s.rest[b] = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
     s.joint[b] = -1;
   }
-  for (int j = 0; j < sim::kNumJoints; ++j) s.joint[sim::Joints()[j].body] = j;
+  for (int j = 0; j < humanoid::kNumJoints; ++j) s.joint[humanoid::Joints()[j].body] = j;
   s.lower = humanoid.dof_lower();
   s.upper = humanoid.dof_upper();
   for (int b : kStraightBodies) {
-    SIMS_CHECK_MSG(
-        std::abs(s.offset[b].x()) < 1e-9 && std::abs(s.offset[b].y()) < 1e-9 &&
-            s.offset[b].z() < 0 && s.rest[b].angularDistance(Eigen::Quaterniond::Identity()) < 1e-9,
-        std::string("limb IK expects body ") + sim::BodyNames()[b] + " straight below its parent");
+    SIMS_CHECK_MSG(std::abs(s.offset[b].x()) < 1e-9 && std::abs(s.offset[b].y()) < 1e-9 &&
+                       s.offset[b].z() < 0 &&
+                       s.rest[b].angularDistance(Eigen::Quaterniond::Identity()) < 1e-9,
+                   std::string("limb IK expects body ") + humanoid::BodyNames()[b] +
+                       " straight below its parent");
   }
   for (int side = 0; side < 2; ++side) {
-    const int foot = humanoid.body_id(side == 0 ? sim::kRightFoot : sim::kLeftFoot);
+    const int foot = humanoid.body_id(side == 0 ? humanoid::kRightFoot : humanoid::kLeftFoot);
     bool found = false;
     for (int g = 0; g < m->ngeom && !found; ++g) {
       if (m->geom_bodyid[g] != foot || m->geom_type[g] != mjGEOM_BOX) continue;
@@ -87,10 +89,11 @@ HumanoidSkeleton HumanoidSkeleton::FromHumanoid(const sim::Humanoid& humanoid) {
   return s;
 }
 
-std::shared_ptr<const sim::Humanoid> HumanoidSkeleton::DefaultHumanoid() {
+std::shared_ptr<const humanoid::Humanoid> HumanoidSkeleton::DefaultHumanoid() {
   static std::once_flag once;
-  static std::shared_ptr<const sim::Humanoid> h;
-  std::call_once(once, [] { h = std::make_shared<const sim::Humanoid>(sim::BuildModel()); });
+  static std::shared_ptr<const humanoid::Humanoid> h;
+  std::call_once(once,
+                 [] { h = std::make_shared<const humanoid::Humanoid>(humanoid::BuildModel()); });
   return h;
 }
 
@@ -100,15 +103,15 @@ const HumanoidSkeleton& HumanoidSkeleton::Default() {
 }
 
 double HumanoidSkeleton::standing_root_height() const {
-  return -(offset[sim::kRightThigh].z() + offset[sim::kRightShin].z() +
-           offset[sim::kRightFoot].z()) +
+  return -(offset[humanoid::kRightThigh].z() + offset[humanoid::kRightShin].z() +
+           offset[humanoid::kRightFoot].z()) +
          ankle_height();
 }
 
 Eigen::Quaterniond JointRotation(int j, const DofVector& dofs) {
-  const sim::JointSpec& js = sim::Joints()[j];
+  const humanoid::JointSpec& js = humanoid::Joints()[j];
   const int o = js.dof_offset;
-  if (js.dof_count == 3) return sim::HingeTripleRotation(dofs[o], dofs[o + 1], dofs[o + 2]);
+  if (js.dof_count == 3) return humanoid::HingeTripleRotation(dofs[o], dofs[o + 1], dofs[o + 2]);
   return Eigen::Quaterniond(Eigen::AngleAxisd(dofs[o], Eigen::Vector3d::UnitY()));
 }
 
@@ -118,7 +121,7 @@ void SkeletonForwardKinematics(const HumanoidSkeleton& skel, const Eigen::Vector
   pose->pos[0] = root_pos;
   pose->rot[0] = root_rot.normalized();
   // AMP order lists every parent before its children.
-  for (int b = 1; b < sim::kNumBodies; ++b) {
+  for (int b = 1; b < humanoid::kNumBodies; ++b) {
     const int p = skel.parent[b];
     pose->pos[b] = pose->pos[p] + pose->rot[p] * skel.offset[b];
     Eigen::Quaterniond r = pose->rot[p] * skel.rest[b];
@@ -130,7 +133,7 @@ void SkeletonForwardKinematics(const HumanoidSkeleton& skel, const Eigen::Vector
 std::array<Eigen::Vector3d, 8> FootBoxCorners(const HumanoidSkeleton& skel,
                                               const SkeletonPose& pose, bool left) {
   const int side = left ? 1 : 0;
-  const int b = left ? sim::kLeftFoot : sim::kRightFoot;
+  const int b = left ? humanoid::kLeftFoot : humanoid::kRightFoot;
   std::array<Eigen::Vector3d, 8> out;
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d sgn((k & 1) ? 1 : -1, (k & 2) ? 1 : -1, (k & 4) ? 1 : -1);
@@ -149,7 +152,7 @@ double SoleHeight(const HumanoidSkeleton& skel, const SkeletonPose& pose, bool l
 
 double ClampToLimits(const HumanoidSkeleton& skel, DofVector* dofs, DofVector* excess) {
   double worst = 0;
-  for (int i = 0; i < sim::kNumDofs; ++i) {
+  for (int i = 0; i < humanoid::kNumDofs; ++i) {
     const double v = (*dofs)[i];
     const double c = std::clamp(v, skel.lower[i], skel.upper[i]);
     if (excess) (*excess)[i] = std::abs(v - c);
@@ -233,12 +236,12 @@ LimbIkResult SolveLegIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
                         const Eigen::Quaterniond& root_rot, const Eigen::Vector3d& p_W_ankle,
                         const Eigen::Quaterniond& R_W_foot, const Eigen::Vector3d& knee_dir_W,
                         DofVector* dofs) {
-  const int thigh = left ? sim::kLeftThigh : sim::kRightThigh;
-  const int shin = left ? sim::kLeftShin : sim::kRightShin;
-  const int foot = left ? sim::kLeftFoot : sim::kRightFoot;
-  const int hip_dof = sim::Joints()[skel.joint[thigh]].dof_offset;
-  const int knee_dof = sim::Joints()[skel.joint[shin]].dof_offset;
-  const int ankle_dof = sim::Joints()[skel.joint[foot]].dof_offset;
+  const int thigh = left ? humanoid::kLeftThigh : humanoid::kRightThigh;
+  const int shin = left ? humanoid::kLeftShin : humanoid::kRightShin;
+  const int foot = left ? humanoid::kLeftFoot : humanoid::kRightFoot;
+  const int hip_dof = humanoid::Joints()[skel.joint[thigh]].dof_offset;
+  const int knee_dof = humanoid::Joints()[skel.joint[shin]].dof_offset;
+  const int ankle_dof = humanoid::Joints()[skel.joint[foot]].dof_offset;
   const double l1 = skel.offset[shin].norm(), l2 = skel.offset[foot].norm();
 
   const Eigen::Quaterniond R_WPf = root_rot.normalized() * skel.rest[thigh];  // hip parent frame
@@ -267,7 +270,7 @@ LimbIkResult SolveLegIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
     const Eigen::Vector3d h = DecomposeHingeTriple(r_hip, skel.lower.segment<3>(hip_dof),
                                                    skel.upper.segment<3>(hip_dof), &prev_hip);
     const Eigen::Quaterniond R_shin =
-        R_WPf * sim::HingeTripleRotation(h[0], h[1], h[2]) *
+        R_WPf * humanoid::HingeTripleRotation(h[0], h[1], h[2]) *
         Eigen::Quaterniond(Eigen::AngleAxisd(kv, Eigen::Vector3d::UnitY()));
     const Eigen::Vector3d an = DecomposeHingeTriple(R_shin.conjugate() * R_W_foot.normalized(),
                                                     skel.lower.segment<3>(ankle_dof),
@@ -285,7 +288,7 @@ LimbIkResult SolveLegIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
   (*dofs)[knee_dof] = kv;
   dofs->segment<3>(ankle_dof) = ankle;
 
-  const Eigen::Quaterniond R_thigh = R_WPf * sim::HingeTripleRotation(hip[0], hip[1], hip[2]);
+  const Eigen::Quaterniond R_thigh = R_WPf * humanoid::HingeTripleRotation(hip[0], hip[1], hip[2]);
   const Eigen::Quaterniond R_shin =
       R_thigh * Eigen::Quaterniond(Eigen::AngleAxisd(kv, Eigen::Vector3d::UnitY()));
   const Eigen::Vector3d p_knee = p_hip + R_thigh * skel.offset[shin];
@@ -307,11 +310,11 @@ LimbIkResult SolveLegIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
 LimbIkResult SolveArmIk(const HumanoidSkeleton& skel, bool left, const Eigen::Vector3d& p_W_torso,
                         const Eigen::Quaterniond& R_W_torso, const Eigen::Vector3d& p_W_hand,
                         const Eigen::Vector3d& elbow_dir_W, DofVector* dofs) {
-  const int upper = left ? sim::kLeftUpperArm : sim::kRightUpperArm;
-  const int lower = left ? sim::kLeftLowerArm : sim::kRightLowerArm;
-  const int hand = left ? sim::kLeftHand : sim::kRightHand;
-  const int sh_dof = sim::Joints()[skel.joint[upper]].dof_offset;
-  const int el_dof = sim::Joints()[skel.joint[lower]].dof_offset;
+  const int upper = left ? humanoid::kLeftUpperArm : humanoid::kRightUpperArm;
+  const int lower = left ? humanoid::kLeftLowerArm : humanoid::kRightLowerArm;
+  const int hand = left ? humanoid::kLeftHand : humanoid::kRightHand;
+  const int sh_dof = humanoid::Joints()[skel.joint[upper]].dof_offset;
+  const int el_dof = humanoid::Joints()[skel.joint[lower]].dof_offset;
   const double l1 = skel.offset[lower].norm(), l2 = skel.offset[hand].norm();
 
   const Eigen::Quaterniond R_WPf = R_W_torso.normalized() * skel.rest[upper];
@@ -345,7 +348,7 @@ LimbIkResult SolveArmIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
   dofs->segment<3>(sh_dof) = sh;
   (*dofs)[el_dof] = ev;
 
-  const Eigen::Quaterniond R_up = R_WPf * sim::HingeTripleRotation(sh[0], sh[1], sh[2]);
+  const Eigen::Quaterniond R_up = R_WPf * humanoid::HingeTripleRotation(sh[0], sh[1], sh[2]);
   const Eigen::Quaterniond R_low =
       R_up * Eigen::Quaterniond(Eigen::AngleAxisd(ev, Eigen::Vector3d::UnitY()));
   const Eigen::Vector3d p_hand = p_sh + R_up * skel.offset[lower] + R_low * skel.offset[hand];
@@ -355,9 +358,9 @@ LimbIkResult SolveArmIk(const HumanoidSkeleton& skel, bool left, const Eigen::Ve
   if (clamped > 0 && result.position_error > 1e-4) {
     // Refine with a pelvis placed so that the torso lands at (p_W_torso, R_W_torso).
     const DofVector& d = *dofs;
-    const Eigen::Quaterniond R_t0 = sim::HingeTripleRotation(d[0], d[1], d[2]);
-    const Eigen::Quaterniond R_root = R_W_torso * (skel.rest[sim::kTorso] * R_t0).conjugate();
-    const Eigen::Vector3d p_root = p_W_torso - R_root * skel.offset[sim::kTorso];
+    const Eigen::Quaterniond R_t0 = humanoid::HingeTripleRotation(d[0], d[1], d[2]);
+    const Eigen::Quaterniond R_root = R_W_torso * (skel.rest[humanoid::kTorso] * R_t0).conjugate();
+    const Eigen::Vector3d p_root = p_W_torso - R_root * skel.offset[humanoid::kTorso];
     // Position-only refinement: its residual is exactly the hand miss.
     result.position_error =
         RefineLimb(skel, p_root, R_root, hand, sh_dof, 4, p_W_hand, nullptr, dofs);

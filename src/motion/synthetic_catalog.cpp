@@ -114,14 +114,14 @@ void HandsTo(BodyKey* k, const Eigen::Vector3d& right, const Eigen::Vector3d& le
 // Rest hand positions of a key (to blend into IK without a jump).
 void HandsAtRest(BodyKey* k) {
   const SkeletonPose sp = PoseOf(*k);
-  k->limbs[0].target = sp.pos[sim::kRightHand];
-  k->limbs[1].target = sp.pos[sim::kLeftHand];
+  k->limbs[0].target = sp.pos[humanoid::kRightHand];
+  k->limbs[1].target = sp.pos[humanoid::kLeftHand];
 }
 
 // A point resting on top of a thigh, `along` from hip to knee (hand sphere clears the capsule).
 Eigen::Vector3d OnThigh(const SkeletonPose& sp, bool left, double along) {
-  const int thigh = left ? sim::kLeftThigh : sim::kRightThigh;
-  const int shin = left ? sim::kLeftShin : sim::kRightShin;
+  const int thigh = left ? humanoid::kLeftThigh : humanoid::kRightThigh;
+  const int shin = left ? humanoid::kLeftShin : humanoid::kRightShin;
   return sp.pos[thigh] + along * (sp.pos[shin] - sp.pos[thigh]) +
          Eigen::Vector3d(0, left ? 0.025 : -0.025, 0.115);
 }
@@ -238,7 +238,7 @@ BodyKey SupineKey(const FurnitureSpec& bed, double t) {
 void LegsToIk(BodyKey* k, const Eigen::Vector3d& knee_hint) {
   const SkeletonPose sp = PoseOf(*k);
   for (int leg = 0; leg < 2; ++leg) {
-    const int foot = leg == 0 ? sim::kRightFoot : sim::kLeftFoot;
+    const int foot = leg == 0 ? humanoid::kRightFoot : humanoid::kLeftFoot;
     LimbKey& l = k->limbs[2 + leg];
     l.weight = 1;
     l.target = sp.pos[foot];
@@ -311,8 +311,8 @@ constexpr double kTuckBack = 0.40;    // toe edge behind the knee when kneeling 
 constexpr double kHandsAhead = 0.55;  // hands ahead of the knees on hands and knees (m)
 constexpr double kHandWidth = 0.17;   // hands either side of the midline (m)
 constexpr double kSupineY = -0.30;    // pelvis y lying on the back (rolls over toward +y)
-constexpr uint32_t kHands = (1u << sim::kRightHand) | (1u << sim::kLeftHand);
-constexpr uint32_t kFeet = (1u << sim::kRightFoot) | (1u << sim::kLeftFoot);
+constexpr uint32_t kHands = (1u << humanoid::kRightHand) | (1u << humanoid::kLeftHand);
+constexpr uint32_t kFeet = (1u << humanoid::kRightFoot) | (1u << humanoid::kLeftFoot);
 
 // Sets a key's pelvis orientation from world axes of its front (+x) and up (+z).
 void Orient(BodyKey* k, const Eigen::Vector3d& front, const Eigen::Vector3d& up) {
@@ -328,7 +328,7 @@ void Orient(BodyKey* k, const Eigen::Vector3d& front, const Eigen::Vector3d& up)
 // `skip` bodies (planted hands and feet: their IK targets hold them where they are).
 void RestOnFloor(BodyKey* k, uint32_t skip = 0) {
   const auto h = HumanoidSkeleton::DefaultHumanoid();
-  sim::MjDataPtr d = sim::MakeData(h->model());
+  humanoid::MjDataPtr d = humanoid::MakeData(h->model());
   BodyKey one = *k;
   one.t = 0;
   for (int iter = 0; iter < 40; ++iter) {
@@ -363,8 +363,8 @@ LimbKey HandOnFloor(double x, double y, const Eigen::Vector3d& hint) {
 void LegsToIkInPlace(BodyKey* k) {
   const SkeletonPose sp = PoseOf(*k);
   LegsToIk(k, Eigen::Vector3d::UnitZ());
-  k->limbs[2].hint = sp.rot[sim::kRightThigh] * Eigen::Vector3d::UnitX();
-  k->limbs[3].hint = sp.rot[sim::kLeftThigh] * Eigen::Vector3d::UnitX();
+  k->limbs[2].hint = sp.rot[humanoid::kRightThigh] * Eigen::Vector3d::UnitX();
+  k->limbs[3].hint = sp.rot[humanoid::kLeftThigh] * Eigen::Vector3d::UnitX();
 }
 
 // A key between two keys (w = 0: a, 1: b): pelvis orientation by slerp, the rest (position,
@@ -400,8 +400,8 @@ Eigen::Vector3d OnTopOf(const SkeletonPose& sp, int body, double along) {
 
 // Both hands on top of the left thigh (right hand nearer the hip), elbows out.
 void HandsOnLeftThigh(BodyKey* k, const SkeletonPose& sp, double right, double left) {
-  HandsTo(k, OnTopOf(sp, sim::kLeftThigh, right) + Eigen::Vector3d(0, -0.03, 0),
-          OnTopOf(sp, sim::kLeftThigh, left) + Eigen::Vector3d(0, 0.02, 0));
+  HandsTo(k, OnTopOf(sp, humanoid::kLeftThigh, right) + Eigen::Vector3d(0, -0.03, 0),
+          OnTopOf(sp, humanoid::kLeftThigh, left) + Eigen::Vector3d(0, 0.02, 0));
   k->limbs[0].hint = Eigen::Vector3d(-0.4, -1, 0.3);
   k->limbs[1].hint = Eigen::Vector3d(-0.4, 1, 0.3);
 }
@@ -442,13 +442,13 @@ void TargetsInPlace(BodyKey* k) {
   for (int arm = 0; arm < 2; ++arm) {
     LimbKey& l = k->limbs[arm];
     if (l.weight > 0) continue;
-    l.target = sp.pos[arm == 0 ? sim::kRightHand : sim::kLeftHand];
+    l.target = sp.pos[arm == 0 ? humanoid::kRightHand : humanoid::kLeftHand];
     l.hint = Eigen::Vector3d(-1, arm == 0 ? -0.3 : 0.3, 0);
   }
   for (int leg = 0; leg < 2; ++leg) {
     LimbKey& l = k->limbs[2 + leg];
     if (l.weight > 0) continue;
-    const int foot = leg == 0 ? sim::kRightFoot : sim::kLeftFoot;
+    const int foot = leg == 0 ? humanoid::kRightFoot : humanoid::kLeftFoot;
     l.target = sp.pos[foot];
     const Eigen::Vector3d fwd = sp.rot[foot] * Eigen::Vector3d::UnitX();
     l.yaw = std::atan2(fwd.y(), fwd.x());
@@ -572,7 +572,7 @@ const std::map<std::string, PoseFn>& NamedPoses() {
          k.limbs[3].target.y() = 0.06;
          const SkeletonPose sp = PoseOf(k);
          LimbKey& r = k.limbs[2];
-         r.target = sp.pos[sim::kLeftShin] + Eigen::Vector3d(0.05, 0.13, -0.16);
+         r.target = sp.pos[humanoid::kLeftShin] + Eigen::Vector3d(0.05, 0.13, -0.16);
          r.yaw = Deg(20), r.pitch = Deg(25);
          r.hint = Eigen::Vector3d(0.3, 0.4, 1);
          // Hands rest on the crossed thigh.
@@ -583,8 +583,8 @@ const std::map<std::string, PoseFn>& NamedPoses() {
       {"hands_on_knees",
        [](BodyKey& k, const FurnitureSpec&) {
          const SkeletonPose sp = PoseOf(k);
-         HandsTo(&k, sp.pos[sim::kRightShin] + Eigen::Vector3d(0.02, 0, 0.09),
-                 sp.pos[sim::kLeftShin] + Eigen::Vector3d(0.02, 0, 0.09));
+         HandsTo(&k, sp.pos[humanoid::kRightShin] + Eigen::Vector3d(0.02, 0, 0.09),
+                 sp.pos[humanoid::kLeftShin] + Eigen::Vector3d(0.02, 0, 0.09));
        }},
       {"on_side",
        [](BodyKey& k, const FurnitureSpec& bed) {
@@ -601,7 +601,7 @@ const std::map<std::string, PoseFn>& NamedPoses() {
        [](BodyKey& k, const FurnitureSpec& bed) {
          const SkeletonPose sp = PoseOf(k);
          for (int leg = 0; leg < 2; ++leg) {
-           const int thigh = leg == 0 ? sim::kRightThigh : sim::kLeftThigh;
+           const int thigh = leg == 0 ? humanoid::kRightThigh : humanoid::kLeftThigh;
            LimbKey& l = k.limbs[2 + leg];
            l.weight = 1;
            l.target = sp.pos[thigh] + Eigen::Vector3d(0, -0.5, 0);
@@ -626,7 +626,7 @@ std::string NamedPoseList() {
 }
 
 int DofIndex(const std::string& name) {
-  const auto& names = sim::DofNames();
+  const auto& names = humanoid::DofNames();
   for (std::size_t i = 0; i < names.size(); ++i)
     if (name == names[i]) return static_cast<int>(i);
   return -1;
@@ -907,6 +907,8 @@ void SitIdleSection::Validate() const {
 void BedSection::Validate() const {
   Require(height > 0, "height", "a positive height (m)");
   RequireRange(variant_height, "variant_height");
+  for (double h : extra_heights)
+    Require(h > 0.2 && h < 1.0, "extra_heights", "bed heights in (0.2, 1.0) m");
   Require(lie_hold >= 0, "lie_hold", "a non-negative time (s)");
 }
 
@@ -1231,6 +1233,28 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
         c.mutable_meta().params["floor"] = 1.0;
         out.push_back(std::move(c));
       }
+    }
+  }
+  // Beds of the extra heights come after everything else, so the draws above stay as they were.
+  for (double h : beds.extra_heights) {
+    const FurnitureSpec bed = BedFor(h);
+    const std::string suffix = "_h" + std::to_string(std::lround(100 * h));
+    if (wanted("lie")) {
+      std::vector<BodyKey> keys = LieDownKeys(bed);
+      keys.push_back(At(keys.back(), keys.back().t + beds.lie_hold, true));
+      IdleNoise n;
+      n.seed = rng.NextU64();
+      MotionMeta meta = Meta(beds.lie_down, "lie", 0, beds.furniture);
+      meta.name += suffix;
+      out.push_back(Build(keys, n, meta, fps, {bed}));
+    }
+    if (wanted("getup")) {
+      IdleNoise n;
+      n.seed = rng.NextU64();
+      MotionClip down = Build(LieDownKeys(bed), n, MotionMeta{}, fps, {bed});
+      MotionMeta meta = Meta(beds.getup, "getup", 0, beds.furniture);
+      meta.name += suffix;
+      out.push_back(Reversed(down, meta));
     }
   }
   return out;

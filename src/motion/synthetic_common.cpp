@@ -7,8 +7,8 @@
 
 #include "motion/synthetic_internal.h"
 #include "sims/core/error.h"
+#include "sims/humanoid/features.h"
 #include "sims/motion/skeleton.h"
-#include "sims/sim/features.h"
 
 namespace sims::motion {
 namespace synth {
@@ -30,11 +30,11 @@ Eigen::Vector3d PivotAnkle(const FootGeometry& g, const Eigen::Vector3d& flat, d
   return p_world - FootRotation(yaw, pitch) * pivot;
 }
 
-sim::StaticGeometry FurnitureGeometry(const std::vector<FurnitureSpec>& boxes) {
-  sim::StaticGeometry g;
+humanoid::StaticGeometry FurnitureGeometry(const std::vector<FurnitureSpec>& boxes) {
+  humanoid::StaticGeometry g;
   int k = 0;
   for (const FurnitureSpec& b : boxes) {
-    sim::StaticGeom s;
+    humanoid::StaticGeom s;
     s.name = "furniture_" + std::to_string(k++);
     s.half_size = Eigen::Vector3d(b.depth / 2, b.width / 2, b.height / 2);
     s.X_WG.translation() = Eigen::Vector3d(b.front_x - b.depth / 2, b.center_y, b.height / 2);
@@ -43,12 +43,12 @@ sim::StaticGeometry FurnitureGeometry(const std::vector<FurnitureSpec>& boxes) {
   return g;
 }
 
-Penetration MeasurePenetration(const sim::Humanoid& h, mjData* d, const MotionFrame& f) {
-  sim::HumanoidPose p;
+Penetration MeasurePenetration(const humanoid::Humanoid& h, mjData* d, const MotionFrame& f) {
+  humanoid::HumanoidPose p;
   p.root_pos = f.root_pos;
   p.root_rot = f.root_rot;
   p.dof_pos = f.dof_pos;
-  sim::WritePose(h, p, d);
+  humanoid::WritePose(h, p, d);
   mj_kinematics(h.model(), d);
   mj_comPos(h.model(), d);
   mj_collision(h.model(), d);
@@ -74,12 +74,12 @@ Penetration MeasurePenetration(const sim::Humanoid& h, mjData* d, const MotionFr
   return out;
 }
 
-double LowestPoint(const sim::Humanoid& h, mjData* d, const MotionFrame& f, uint32_t skip) {
-  sim::HumanoidPose p;
+double LowestPoint(const humanoid::Humanoid& h, mjData* d, const MotionFrame& f, uint32_t skip) {
+  humanoid::HumanoidPose p;
   p.root_pos = f.root_pos;
   p.root_rot = f.root_rot;
   p.dof_pos = f.dof_pos;
-  sim::WritePose(h, p, d);
+  humanoid::WritePose(h, p, d);
   const mjModel* m = h.model();
   mj_kinematics(m, d);
   double lowest = std::numeric_limits<double>::infinity();
@@ -141,7 +141,7 @@ void HandsBehindBack(const Eigen::Vector3d& root_pos, const Eigen::Quaterniond& 
   std::array<Eigen::Vector3d, 2> targets, hints;
   HandsBehindBackTargets(root_pos, root_rot, &targets, &hints);
   for (int side = 0; side < 2; ++side)
-    SolveArmIk(skel, side == 1, sp.pos[sim::kTorso], sp.rot[sim::kTorso], targets[side],
+    SolveArmIk(skel, side == 1, sp.pos[humanoid::kTorso], sp.rot[humanoid::kTorso], targets[side],
                hints[side], dofs);
 }
 
@@ -170,15 +170,15 @@ BodyKey StandingKey(double t, double foot_width) {
 
 namespace {
 
-constexpr int kChannels = 6 + sim::kNumDofs + 4 * 9;
+constexpr int kChannels = 6 + humanoid::kNumDofs + 4 * 9;
 
 Eigen::VectorXd Pack(const BodyKey& k) {
   Eigen::VectorXd v(kChannels);
   v.segment<3>(0) = k.pelvis;
   v[3] = k.yaw, v[4] = k.pitch, v[5] = k.roll;
-  v.segment<sim::kNumDofs>(6) = k.dofs;
+  v.segment<humanoid::kNumDofs>(6) = k.dofs;
   for (int l = 0; l < 4; ++l) {
-    const int o = 6 + sim::kNumDofs + 9 * l;
+    const int o = 6 + humanoid::kNumDofs + 9 * l;
     v[o] = k.limbs[l].weight;
     v.segment<3>(o + 1) = k.limbs[l].target;
     v[o + 4] = k.limbs[l].yaw;
@@ -221,11 +221,11 @@ MotionFrame SolveFrame(const Eigen::VectorXd& v, const DofVector& noise_dofs,
   out.root_pos = v.segment<3>(0) + noise_root;
   out.root_pos.z() += lift;
   out.root_rot = rot ? *rot : YawPitchRoll(v[3], v[4], v[5]);
-  DofVector dofs = v.segment<sim::kNumDofs>(6) + noise_dofs;
+  DofVector dofs = v.segment<humanoid::kNumDofs>(6) + noise_dofs;
   const DofVector base = dofs;
   // Legs first (they do not depend on the arms), then arms from the torso pose.
   for (int leg = 0; leg < 2; ++leg) {
-    const int o = 6 + sim::kNumDofs + 9 * (2 + leg);
+    const int o = 6 + humanoid::kNumDofs + 9 * (2 + leg);
     const double w = std::clamp(v[o], 0.0, 1.0);
     if (w < 1e-6) continue;
     DofVector ik = base;
@@ -239,14 +239,14 @@ MotionFrame SolveFrame(const Eigen::VectorXd& v, const DofVector& noise_dofs,
   SkeletonPose sp;
   SkeletonForwardKinematics(skel, out.root_pos, out.root_rot, dofs, &sp);
   for (int arm = 0; arm < 2; ++arm) {
-    const int o = 6 + sim::kNumDofs + 9 * arm;
+    const int o = 6 + humanoid::kNumDofs + 9 * arm;
     const double w = std::clamp(v[o], 0.0, 1.0);
     if (w < 1e-6) continue;
     DofVector ik = dofs;
     // Hand targets rest on the body or furniture, so they rise with the pelvis lift.
     const Eigen::Vector3d target = v.segment<3>(o + 1) + Eigen::Vector3d(0, 0, lift);
-    const LimbIkResult r = SolveArmIk(skel, arm == 1, sp.pos[sim::kTorso], sp.rot[sim::kTorso],
-                                      target, v.segment<3>(o + 6), &ik);
+    const LimbIkResult r = SolveArmIk(skel, arm == 1, sp.pos[humanoid::kTorso],
+                                      sp.rot[humanoid::kTorso], target, v.segment<3>(o + 6), &ik);
     if (stats && w > 0.99) stats->arm_error = std::max(stats->arm_error, r.position_error);
     const int sh = arm == 0 ? kRShX : kLShX;
     for (int k = sh; k < sh + 4; ++k) dofs[k] = (1 - w) * dofs[k] + w * ik[k];
@@ -342,8 +342,8 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
   std::vector<double> lift(n, 0.0);
   if (furniture && rest_on_floor) {
     // Two-sided: raise out of the floor or lower onto it until the lowest point touches.
-    const std::shared_ptr<const sim::Humanoid> h = HumanoidSkeleton::DefaultHumanoid();
-    sim::MjDataPtr d = sim::MakeData(h->model());
+    const std::shared_ptr<const humanoid::Humanoid> h = HumanoidSkeleton::DefaultHumanoid();
+    humanoid::MjDataPtr d = humanoid::MakeData(h->model());
     constexpr double kTolerance = 2e-4;
     auto lowest = [&](int f, double l) {
       return LowestPoint(
@@ -373,11 +373,11 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
         lift[f] = lowest(f, smooth[f]) >= -kTolerance ? smooth[f] : settle(f, smooth[f]);
   } else if (furniture) {
     // The floor-only model is the shared default humanoid; furniture needs its own model.
-    const std::shared_ptr<const sim::Humanoid> h =
-        furniture->empty()
-            ? HumanoidSkeleton::DefaultHumanoid()
-            : std::make_shared<const sim::Humanoid>(sim::BuildModel(FurnitureGeometry(*furniture)));
-    sim::MjDataPtr d = sim::MakeData(h->model());
+    const std::shared_ptr<const humanoid::Humanoid> h =
+        furniture->empty() ? HumanoidSkeleton::DefaultHumanoid()
+                           : std::make_shared<const humanoid::Humanoid>(
+                                 humanoid::BuildModel(FurnitureGeometry(*furniture)));
+    humanoid::MjDataPtr d = humanoid::MakeData(h->model());
     constexpr double kTolerance = 5e-4;
     for (int f = 0; f < n; ++f) {
       for (int iter = 0; iter < 10; ++iter) {
@@ -411,13 +411,13 @@ std::vector<MotionFrame> SolveKeys(const std::vector<BodyKey>& keys, double fps,
 ClipQuality MeasureClipQuality(const MotionClip& clip) {
   const HumanoidSkeleton& skel = HumanoidSkeleton::Default();
   const auto h = HumanoidSkeleton::DefaultHumanoid();
-  sim::MjDataPtr d = sim::MakeData(h->model());
+  humanoid::MjDataPtr d = humanoid::MakeData(h->model());
   ClipQuality q;
   q.min_sole_height = 1e9;
   std::array<std::array<Eigen::Vector3d, 8>, 2> prev;
   for (int f = 0; f < clip.num_frames(); ++f) {
     const MotionFrame& fr = clip.frame(f);
-    for (int i = 0; i < sim::kNumDofs; ++i)
+    for (int i = 0; i < humanoid::kNumDofs; ++i)
       q.max_limit_excess = std::max(
           {q.max_limit_excess, skel.lower[i] - fr.dof_pos[i], fr.dof_pos[i] - skel.upper[i]});
     SkeletonPose sp;

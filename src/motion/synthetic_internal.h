@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "sims/humanoid/model_builder.h"
 #include "sims/motion/motion_clip.h"
 #include "sims/motion/synthetic.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::motion::synth {
 
-/// DoF indices (sim::DofNames() order).
+/// DoF indices (humanoid::DofNames() order).
 enum Dof : int {
   kAbdX = 0,
   kAbdY,
@@ -83,7 +83,7 @@ inline Eigen::Quaterniond FootRotation(double yaw, double pitch) {
 }
 
 /// Static boxes (seat, bed) the humanoid must stay above, as MuJoCo geometry.
-sim::StaticGeometry FurnitureGeometry(const std::vector<FurnitureSpec>& boxes);
+humanoid::StaticGeometry FurnitureGeometry(const std::vector<FurnitureSpec>& boxes);
 
 /// Deepest penetrations of a pose: humanoid vs world (floor, furniture) and humanoid vs itself.
 struct Penetration {
@@ -91,12 +91,12 @@ struct Penetration {
   double self = 0;   ///< Between humanoid geoms (m).
 };
 /// Measures a frame with `h`'s model (which includes the furniture) using scratch data `d`.
-Penetration MeasurePenetration(const sim::Humanoid& h, mjData* d, const MotionFrame& f);
+Penetration MeasurePenetration(const humanoid::Humanoid& h, mjData* d, const MotionFrame& f);
 
 /// Height above the floor (z = 0) of the lowest point of the humanoid's geoms in a frame
 /// (negative: below the floor), from `h`'s model with scratch data `d`. Geoms of the bodies
-/// whose bit (1 << sim::Body) is set in `skip` are left out.
-double LowestPoint(const sim::Humanoid& h, mjData* d, const MotionFrame& f, uint32_t skip = 0);
+/// whose bit (1 << humanoid::Body) is set in `skip` are left out.
+double LowestPoint(const humanoid::Humanoid& h, mjData* d, const MotionFrame& f, uint32_t skip = 0);
 
 /// Labels of a synthetic clip.
 MotionMeta SyntheticMeta(const std::string& name, const std::string& skill,

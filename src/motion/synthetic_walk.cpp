@@ -6,8 +6,8 @@
 #include "motion/synthetic_internal.h"
 #include "sims/core/error.h"
 #include "sims/core/rng.h"
+#include "sims/humanoid/features.h"
 #include "sims/motion/rotation.h"
-#include "sims/sim/features.h"
 
 namespace sims::motion {
 
@@ -226,7 +226,7 @@ MotionClip GenerateWalk(const WalkSpec& spec, const MotionMeta& meta_in, double 
       }
     }
     for (int side = 0; side < 2; ++side) {
-      const int thigh = side == 0 ? sim::kRightThigh : sim::kLeftThigh;
+      const int thigh = side == 0 ? humanoid::kRightThigh : humanoid::kLeftThigh;
       const Eigen::Vector3d hip = out.root_pos + out.root_rot * skel.offset[thigh];
       const double dxy2 = (hip - ankles[f][side]).head<2>().squaredNorm();
       const double reach = dxy2 < l_max * l_max ? std::sqrt(l_max * l_max - dxy2) : 0.0;

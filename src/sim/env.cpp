@@ -27,13 +27,14 @@ void ObsAblation::Apply(const std::vector<ObsSegment>& segments, int n, int obs_
     const bool withheld = (no_text && s.kind == ObsSegment::Kind::kStyle) ||
                           (no_heightmap && s.kind == ObsSegment::Kind::kHeightmap);
     if (!withheld) continue;
-    SIMS_CHECK(kSelfObsDim + s.offset + s.size <= obs_dim);
+    SIMS_CHECK(humanoid::kSelfObsDim + s.offset + s.size <= obs_dim);
     for (int i = 0; i < n; ++i)
-      std::fill_n(obs + static_cast<size_t>(i) * obs_dim + kSelfObsDim + s.offset, s.size, 0.f);
+      std::fill_n(obs + static_cast<size_t>(i) * obs_dim + humanoid::kSelfObsDim + s.offset, s.size,
+                  0.f);
   }
 }
 
-uint32_t FeetContactMask() { return (1u << kRightFoot) | (1u << kLeftFoot); }
+uint32_t FeetContactMask() { return (1u << humanoid::kRightFoot) | (1u << humanoid::kLeftFoot); }
 
 void EnvConfig::Validate() const {
   Require(num_envs > 0, "num_envs", "a positive integer");
@@ -61,31 +62,31 @@ constexpr int kWatchedWarnings[] = {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQA
 // the state after mj_step1 depends on the quaternion *before* the pass, not the one left in
 // qpos. Each env keeps that pre-pass quaternion so a snapshot can replay the pass exactly.
 namespace {
-void RememberRootQuaternion(const Humanoid& h, const mjData* d, double* out4) {
+void RememberRootQuaternion(const humanoid::Humanoid& h, const mjData* d, double* out4) {
   std::memcpy(out4, d->qpos + h.root_qpos_adr() + 3, 4 * sizeof(double));
 }
 }  // namespace
 
 struct BatchedEnv::Slot {
-  MjDataPtr data;
+  humanoid::MjDataPtr data;
   Rng rng;
-  HumanoidPose pose;
-  BodyStates bodies;
+  humanoid::HumanoidPose pose;
+  humanoid::BodyStates bodies;
   std::vector<float> amp_hist;  // [amp_history, 125], slot 0 = current step
   int progress = 0;
   int grace = 0;
   bool reference = false;  // the episode began from a motion-clip state
   int warnings_seen = 0;
-  double targets[kNumDofs];
+  double targets[humanoid::kNumDofs];
   double root_quat_before_pass[4];  // see RememberRootQuaternion
 };
 
-BatchedEnv::BatchedEnv(std::shared_ptr<const Humanoid> humanoid, const EnvConfig& config,
+BatchedEnv::BatchedEnv(std::shared_ptr<const humanoid::Humanoid> humanoid, const EnvConfig& config,
                        std::shared_ptr<TaskHook> task)
     : humanoid_(std::move(humanoid)), config_(config), task_(std::move(task)) {
   SIMS_CHECK(humanoid_ != nullptr);
   ValidateConfig(config_, "EnvConfig");
-  obs_dim_ = kSelfObsDim + (task_ ? task_->obs_dim() : 0);
+  obs_dim_ = humanoid::kSelfObsDim + (task_ ? task_->obs_dim() : 0);
   threads_ = config_.threads > 0 ? config_.threads : ThreadCount();
   obs_options_.root_height = config_.root_height_obs;
   obs_options_.local_root_rot = config_.local_root_obs;
@@ -105,7 +106,7 @@ BatchedEnv::BatchedEnv(std::shared_ptr<const Humanoid> humanoid, const EnvConfig
   slots_.resize(n);
   for (int i = 0; i < n; ++i) {
     slots_[i] = std::make_unique<Slot>();
-    slots_[i]->data = MakeData(humanoid_->model());
+    slots_[i]->data = humanoid::MakeData(humanoid_->model());
     slots_[i]->rng = Rng::ForEnv(config_.seed, i);
     slots_[i]->amp_hist.assign(static_cast<size_t>(amp_obs_dim()), 0.0f);
   }
@@ -119,8 +120,10 @@ double BatchedEnv::control_dt() const {
 }
 
 mjData* BatchedEnv::data(int env_id) { return slots_.at(env_id)->data.get(); }
-const HumanoidPose& BatchedEnv::pose(int env_id) const { return slots_.at(env_id)->pose; }
-const BodyStates& BatchedEnv::bodies(int env_id) const { return slots_.at(env_id)->bodies; }
+const humanoid::HumanoidPose& BatchedEnv::pose(int env_id) const { return slots_.at(env_id)->pose; }
+const humanoid::BodyStates& BatchedEnv::bodies(int env_id) const {
+  return slots_.at(env_id)->bodies;
+}
 int BatchedEnv::progress(int env_id) const { return slots_.at(env_id)->progress; }
 
 EnvView BatchedEnv::View(int i) const {
@@ -173,21 +176,23 @@ void BatchedEnv::ResetSlot(int i) {
   const bool has_history = static_cast<int>(init.history.size()) >= hist - 1 && hist > 1;
   if (has_history) {
     for (int k = 1; k < hist; ++k) {
-      ForwardKinematics(*humanoid_, init.history[k - 1], d, &s.bodies);
-      ComputeAmpObservation(init.history[k - 1], s.bodies, obs_options_,
-                            s.amp_hist.data() + static_cast<size_t>(k) * kAmpObsStepDim);
+      humanoid::ForwardKinematics(*humanoid_, init.history[k - 1], d, &s.bodies);
+      humanoid::ComputeAmpObservation(
+          init.history[k - 1], s.bodies, obs_options_,
+          s.amp_hist.data() + static_cast<size_t>(k) * humanoid::kAmpObsStepDim);
     }
   }
-  WritePose(*humanoid_, init.pose, d);
+  humanoid::WritePose(*humanoid_, init.pose, d);
   // Hold the initial joint angles as PD targets until the first action arrives.
-  for (int j = 0; j < kNumDofs; ++j) d->ctrl[humanoid_->actuator_id(j)] = init.pose.dof_pos[j];
+  for (int j = 0; j < humanoid::kNumDofs; ++j)
+    d->ctrl[humanoid_->actuator_id(j)] = init.pose.dof_pos[j];
   RememberRootQuaternion(*humanoid_, d, s.root_quat_before_pass);
   mj_forward(m, d);
   s.warnings_seen = 0;
   for (int w : kWatchedWarnings) s.warnings_seen += d->warning[w].number;
   if (task_) {
-    ReadPose(*humanoid_, d, &s.pose);
-    ReadBodyStates(*humanoid_, d, &s.bodies);
+    humanoid::ReadPose(*humanoid_, d, &s.pose);
+    humanoid::ReadBodyStates(*humanoid_, d, &s.bodies);
     task_->OnReset(View(i), s.rng);
   }
   RefreshObservation(i, !has_history);
@@ -201,17 +206,17 @@ void BatchedEnv::RefreshTaskObservation(int env_id) {
 void BatchedEnv::RefreshObservation(int i, bool fill_history) {
   Slot& s = *slots_[i];
   const mjData* d = s.data.get();
-  ReadPose(*humanoid_, d, &s.pose);
-  ReadBodyStates(*humanoid_, d, &s.bodies);
+  humanoid::ReadPose(*humanoid_, d, &s.pose);
+  humanoid::ReadBodyStates(*humanoid_, d, &s.bodies);
   float* row = obs_.data() + static_cast<size_t>(i) * obs_dim_;
-  ComputeSelfObservation(s.bodies, obs_options_, row);
-  if (task_) task_->Observe(View(i), row + kSelfObsDim);
-  ComputeAmpObservation(s.pose, s.bodies, obs_options_, s.amp_hist.data());
+  humanoid::ComputeSelfObservation(s.bodies, obs_options_, row);
+  if (task_) task_->Observe(View(i), row + humanoid::kSelfObsDim);
+  humanoid::ComputeAmpObservation(s.pose, s.bodies, obs_options_, s.amp_hist.data());
   if (fill_history) {
     // Default/fall resets have no past: repeat the current observation (ASE).
     for (int k = 1; k < config_.amp_history; ++k)
-      std::memcpy(s.amp_hist.data() + static_cast<size_t>(k) * kAmpObsStepDim, s.amp_hist.data(),
-                  sizeof(float) * kAmpObsStepDim);
+      std::memcpy(s.amp_hist.data() + static_cast<size_t>(k) * humanoid::kAmpObsStepDim,
+                  s.amp_hist.data(), sizeof(float) * humanoid::kAmpObsStepDim);
   }
 }
 
@@ -243,9 +248,9 @@ bool BatchedEnv::Fallen(int i) const {
     if (!(contact_mask_ & (1u << b))) touching = true;
   }
   if (!touching) return false;
-  for (int b = 0; b < kNumBodies; ++b) {
+  for (int b = 0; b < humanoid::kNumBodies; ++b) {
     if (contact_mask_ & (1u << b)) continue;
-    const double h = b == kHead
+    const double h = b == humanoid::kHead
                          ? std::max(config_.head_termination_height, config_.termination_height)
                          : config_.termination_height;
     if (s.bodies.pos[b].z() < h) return true;
@@ -258,7 +263,7 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   const mjModel* m = humanoid_->model();
   mjData* d = s.data.get();
   humanoid_->ActionToTargets(action, s.targets);
-  for (int j = 0; j < kNumDofs; ++j) d->ctrl[humanoid_->actuator_id(j)] = s.targets[j];
+  for (int j = 0; j < humanoid::kNumDofs; ++j) d->ctrl[humanoid_->actuator_id(j)] = s.targets[j];
   // The position/velocity stage of the state we start from is already computed (by mj_forward
   // after a reset or mj_step1 at the end of the last control step), so finish that step with
   // mj_step2, then run full steps, and end with mj_step1 so observations see the final state.
@@ -274,8 +279,8 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   if (Unstable(i)) {
     reason = kUnstable;
   } else {
-    ReadPose(*humanoid_, d, &s.pose);
-    ReadBodyStates(*humanoid_, d, &s.bodies);
+    humanoid::ReadPose(*humanoid_, d, &s.pose);
+    humanoid::ReadBodyStates(*humanoid_, d, &s.bodies);
     if (task_) tr = task_->Step(View(i));
     if (s.grace > 0) --s.grace;
     bool fell = config_.early_termination && s.grace == 0 && s.progress > 1 && Fallen(i);
@@ -306,11 +311,11 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   float* amp_row = amp_obs_.data() + static_cast<size_t>(i) * amp_obs_dim();
   if (reason != kUnstable) {
     // Shift the AMP history one step back and compute slot 0 (the observation of now).
-    std::memmove(s.amp_hist.data() + kAmpObsStepDim, s.amp_hist.data(),
-                 sizeof(float) * kAmpObsStepDim * (config_.amp_history - 1));
-    ComputeAmpObservation(s.pose, s.bodies, obs_options_, s.amp_hist.data());
-    ComputeSelfObservation(s.bodies, obs_options_, row);
-    if (task_) task_->Observe(View(i), row + kSelfObsDim);
+    std::memmove(s.amp_hist.data() + humanoid::kAmpObsStepDim, s.amp_hist.data(),
+                 sizeof(float) * humanoid::kAmpObsStepDim * (config_.amp_history - 1));
+    humanoid::ComputeAmpObservation(s.pose, s.bodies, obs_options_, s.amp_hist.data());
+    humanoid::ComputeSelfObservation(s.bodies, obs_options_, row);
+    if (task_) task_->Observe(View(i), row + humanoid::kSelfObsDim);
   }
   // A blown-up transition keeps the previous (finite) AMP history so no NaN reaches a learner.
   std::memcpy(amp_row, s.amp_hist.data(), sizeof(float) * amp_obs_dim());
@@ -328,7 +333,7 @@ void BatchedEnv::StepEnv(int i, const float* action) {
 void BatchedEnv::Step(const float* actions) {
   const int n = config_.num_envs;
 #pragma omp parallel for schedule(static) num_threads(threads_)
-  for (int i = 0; i < n; ++i) StepEnv(i, actions + static_cast<size_t>(i) * kNumDofs);
+  for (int i = 0; i < n; ++i) StepEnv(i, actions + static_cast<size_t>(i) * humanoid::kNumDofs);
   stats_.steps += n;
   for (int i = 0; i < n; ++i) {
     stats_.recoveries += recovered_[i];
@@ -526,19 +531,19 @@ void BatchedEnv::ApplyState(const std::string& state, int sim2_stats) {
     mj_step1(m, d);
     s.warnings_seen = 0;
     for (int wi : kWatchedWarnings) s.warnings_seen += d->warning[wi].number;
-    ReadPose(*humanoid_, d, &s.pose);
-    ReadBodyStates(*humanoid_, d, &s.bodies);
+    humanoid::ReadPose(*humanoid_, d, &s.pose);
+    humanoid::ReadBodyStates(*humanoid_, d, &s.bodies);
     float* row = obs_.data() + static_cast<size_t>(i) * obs_dim_;
-    ComputeSelfObservation(s.bodies, obs_options_, row);
-    if (task_) task_->Observe(View(i), row + kSelfObsDim);
+    humanoid::ComputeSelfObservation(s.bodies, obs_options_, row);
+    if (task_) task_->Observe(View(i), row + humanoid::kSelfObsDim);
   }
   if (!r.done())
     ThrowInputError("environment state", "", "a snapshot of this environment", "trailing data");
 }
 
-void BatchedEnv::SetState(int env_id, const HumanoidPose& pose) {
+void BatchedEnv::SetState(int env_id, const humanoid::HumanoidPose& pose) {
   Slot& s = *slots_.at(env_id);
-  WritePose(*humanoid_, pose, s.data.get());
+  humanoid::WritePose(*humanoid_, pose, s.data.get());
   RememberRootQuaternion(*humanoid_, s.data.get(), s.root_quat_before_pass);
   mj_forward(humanoid_->model(), s.data.get());
   RefreshObservation(env_id, false);

@@ -52,7 +52,7 @@ std::vector<Vector3d> NormalDirections(const TriangleMesh& m) {
 
 // Recognises an (oriented) box: three orthogonal normal directions and every vertex at an
 // extreme along each of them.
-bool AsBox(const TriangleMesh& m, double tol, StaticGeom* g) {
+bool AsBox(const TriangleMesh& m, double tol, humanoid::StaticGeom* g) {
   const std::vector<Vector3d> dirs = NormalDirections(m);
   if (dirs.size() != 3) return false;
   for (int a = 0; a < 3; ++a)
@@ -72,7 +72,7 @@ bool AsBox(const TriangleMesh& m, double tol, StaticGeom* g) {
     for (int k = 0; k < 3; ++k)
       if (std::min(std::abs(q[k] - lo[k]), std::abs(q[k] - hi[k])) > tol) return false;
   }
-  g->type = StaticGeom::Type::kBox;
+  g->type = humanoid::StaticGeom::Type::kBox;
   g->X_WG = Eigen::Isometry3d::Identity();
   g->X_WG.linear() = R;
   g->X_WG.translation() = R * (0.5 * (lo + hi));
@@ -82,9 +82,9 @@ bool AsBox(const TriangleMesh& m, double tol, StaticGeom* g) {
 
 // Convex mesh geom from the piece's vertices; flat pieces get thickness along their normal
 // (downwards for horizontal ones, so a seat's top stays where it is).
-StaticGeom AsConvexMesh(const TriangleMesh& m, double min_thickness) {
-  StaticGeom g;
-  g.type = StaticGeom::Type::kConvexMesh;
+humanoid::StaticGeom AsConvexMesh(const TriangleMesh& m, double min_thickness) {
+  humanoid::StaticGeom g;
+  g.type = humanoid::StaticGeom::Type::kConvexMesh;
   g.vertices = m.vertices;
   Vector3d mean = Vector3d::Zero();
   for (const auto& v : m.vertices) mean += v;
@@ -106,17 +106,17 @@ StaticGeom AsConvexMesh(const TriangleMesh& m, double min_thickness) {
   return g;
 }
 
-std::vector<StaticGeom> VoxelBoxes(const TriangleMesh& m, const ScenePhysicsOptions& o) {
+std::vector<humanoid::StaticGeom> VoxelBoxes(const TriangleMesh& m, const ScenePhysicsOptions& o) {
   double res = o.voxel_size;
   for (int attempt = 0; attempt < 8; ++attempt, res *= 1.5) {
     const scene::VoxelGrid grid = scene::VoxelizeSolid(m, res);
     std::vector<scene::Aabb> boxes = scene::MergeVoxelsToBoxes(grid);
     if (static_cast<int>(boxes.size()) > o.max_boxes_per_piece && attempt < 7) continue;
     boxes = scene::TightenBoxesToSurface(boxes, grid, m);
-    std::vector<StaticGeom> out;
+    std::vector<humanoid::StaticGeom> out;
     for (const auto& b : boxes) {
-      StaticGeom g;
-      g.type = StaticGeom::Type::kBox;
+      humanoid::StaticGeom g;
+      g.type = humanoid::StaticGeom::Type::kBox;
       g.X_WG.translation() = b.center();
       g.half_size = 0.5 * b.size();
       out.push_back(std::move(g));
@@ -156,21 +156,21 @@ bool IsConvexPiece(const TriangleMesh& mesh, double tolerance) {
   return true;
 }
 
-std::vector<StaticGeom> CompileMeshGeometry(const TriangleMesh& mesh,
-                                            const std::string& name_prefix,
-                                            const ScenePhysicsOptions& options) {
-  std::vector<StaticGeom> out;
+std::vector<humanoid::StaticGeom> CompileMeshGeometry(const TriangleMesh& mesh,
+                                                      const std::string& name_prefix,
+                                                      const ScenePhysicsOptions& options) {
+  std::vector<humanoid::StaticGeom> out;
   const double weld = 1e-6;
   for (const TriangleMesh& piece : mesh.EdgeConnectedComponents(weld)) {
     if (piece.Bounds().size().norm() < options.min_piece_size) continue;
-    std::vector<StaticGeom> geoms;
+    std::vector<humanoid::StaticGeom> geoms;
     const double work =
         static_cast<double>(piece.triangles.size()) * static_cast<double>(piece.vertices.size());
     const double diagonal = piece.Bounds().size().norm();
     const double tolerance =
         std::max(options.convexity_tolerance, options.convexity_relative * diagonal);
     if (work <= kMaxConvexityWork && IsConvexPiece(piece, tolerance)) {
-      StaticGeom g;
+      humanoid::StaticGeom g;
       if (!AsBox(piece, 1e-6 + 1e-4 * piece.Bounds().size().norm(), &g))
         g = AsConvexMesh(piece, options.min_thickness);
       geoms.push_back(std::move(g));
@@ -186,9 +186,10 @@ std::vector<StaticGeom> CompileMeshGeometry(const TriangleMesh& mesh,
   return out;
 }
 
-StaticGeometry CompileSceneGeometry(const scene::Scene& scene, const ScenePhysicsOptions& options) {
+humanoid::StaticGeometry CompileSceneGeometry(const scene::Scene& scene,
+                                              const ScenePhysicsOptions& options) {
   ValidateConfig(options, "scene physics options");
-  StaticGeometry geometry;
+  humanoid::StaticGeometry geometry;
   for (const auto& o : scene.objects) {
     if (!o.is_static) continue;
     if (std::find(options.skip_categories.begin(), options.skip_categories.end(), o.category) !=

@@ -185,7 +185,7 @@ std::vector<StoryRun> RunStories(const std::vector<PreparedStory>& stories,
     run.record = recorders[i]->Finish();
     run.policies = policies.source;
     run.options = options[i];
-    run.geometry = std::make_shared<const sim::StaticGeometry>(runners[i]->geometry());
+    run.geometry = std::make_shared<const humanoid::StaticGeometry>(runners[i]->geometry());
     run.humanoid = runners[i]->humanoid();
     runners[i].reset();  // frees the scene's model and environment before the next ones
   }

@@ -9,15 +9,15 @@
 #include "sims/core/paths.h"
 #include "sims/core/progress.h"
 #include "sims/eval/motion_metrics.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/motion/motion_library.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::story {
 
 namespace {
 
 Eigen::MatrixXd ReferenceFeatures(const std::filesystem::path& manifest) {
-  auto humanoid = std::make_shared<const sim::Humanoid>(sim::BuildModel());
+  auto humanoid = std::make_shared<const humanoid::Humanoid>(humanoid::BuildModel());
   const auto lib = motion::MotionLibrary::Load(manifest, humanoid);
   std::vector<Eigen::MatrixXd> parts;
   for (int i = 0; i < lib.num_clips(); ++i)

@@ -16,24 +16,24 @@ uint32_t ContactStep::mask() const {
   return m;
 }
 
-std::array<ContactType, sim::kNumContactJoints> ContactStep::types() const {
-  std::array<ContactType, sim::kNumContactJoints> t;
+std::array<ContactType, humanoid::kNumContactJoints> ContactStep::types() const {
+  std::array<ContactType, humanoid::kNumContactJoints> t;
   t.fill(ContactType::kNone);
   for (const auto& p : pairs) t[p.joint] = p.type;
   return t;
 }
 
-std::array<JointPair, sim::kNumContactJoints> ResolveStep(const ContactStep& step,
-                                                          const scene::Scene& scene,
-                                                          const sim::BodyStates& b) {
-  std::array<JointPair, sim::kNumContactJoints> pairs;
+std::array<JointPair, humanoid::kNumContactJoints> ResolveStep(const ContactStep& step,
+                                                               const scene::Scene& scene,
+                                                               const humanoid::BodyStates& b) {
+  std::array<JointPair, humanoid::kNumContactJoints> pairs;
   for (const auto& p : step.pairs) {
     if (p.type == ContactType::kNone) continue;
     JointPair& jp = pairs[p.joint];
     jp.type = p.type;
-    jp.joint = sim::ContactJointPosition(b, p.joint);
+    jp.joint = humanoid::ContactJointPosition(b, p.joint);
     jp.target = p.target_joint >= 0
-                    ? sim::ContactJointPosition(b, p.target_joint)
+                    ? humanoid::ContactJointPosition(b, p.target_joint)
                     : scene::NearestSamplePoint(scene.objects[p.object].parts[p.part], jp.joint);
     jp.direction = p.direction;
   }
@@ -51,15 +51,15 @@ std::string Str(const json& j, const std::string& src, const std::string& field,
 }
 
 int JointOrMinus(const std::string& name) {
-  const auto& names = sim::ContactJointNames();
-  for (int j = 0; j < sim::kNumContactJoints; ++j)
+  const auto& names = humanoid::ContactJointNames();
+  for (int j = 0; j < humanoid::kNumContactJoints; ++j)
     if (name == names[j]) return j;
   return -1;
 }
 
 std::string JointList() {
   std::string s;
-  for (const char* n : sim::ContactJointNames()) s += (s.empty() ? "" : ", ") + std::string(n);
+  for (const char* n : humanoid::ContactJointNames()) s += (s.empty() ? "" : ", ") + std::string(n);
   return s;
 }
 
@@ -84,7 +84,7 @@ Eigen::Vector3d StandPoint(const json& plan, const std::string& key, const scene
     }
   }
   const scene::Aabb b = o.Bounds();
-  return {b.max.x() + 0.45, 0.5 * (b.min.y() + b.max.y()), sim::kDefaultRootHeight};
+  return {b.max.x() + 0.45, 0.5 * (b.min.y() + b.max.y()), humanoid::kDefaultRootHeight};
 }
 
 }  // namespace

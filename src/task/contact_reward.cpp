@@ -98,7 +98,7 @@ PairReward ContactPairReward(const JointPair& p) {
   return out;
 }
 
-StepReward UniHsiStepReward(const std::array<JointPair, sim::kNumContactJoints>& pairs,
+StepReward UniHsiStepReward(const std::array<JointPair, humanoid::kNumContactJoints>& pairs,
                             const Eigen::Vector3d& root, const Eigen::Vector3d& root_velocity,
                             const Eigen::Vector2d& facing, const Eigen::Vector3d& stand_point,
                             double target_speed) {
@@ -126,17 +126,17 @@ StepReward UniHsiStepReward(const std::array<JointPair, sim::kNumContactJoints>&
     out.reward = AdaptiveCombine(r, 3);
     return out;
   }
-  std::array<double, sim::kNumContactJoints> r;
-  for (int j = 0; j < sim::kNumContactJoints; ++j) {
+  std::array<double, humanoid::kNumContactJoints> r;
+  for (int j = 0; j < humanoid::kNumContactJoints; ++j) {
     const PairReward pr = ContactPairReward(pairs[j]);
     r[j] = pr.reward;
     out.err2[j] = pr.err2;
   }
-  const double near = AdaptiveCombine(r.data(), sim::kNumContactJoints);
+  const double near = AdaptiveCombine(r.data(), humanoid::kNumContactJoints);
   // Facing the target matters only when one hand is the sole contact (a reach).
   double r_face = 1.0;
   if (valid == 1) {
-    for (int hand : {sim::kCjRightHand, sim::kCjLeftHand}) {
+    for (int hand : {humanoid::kCjRightHand, humanoid::kCjLeftHand}) {
       if (pairs[hand].type == ContactType::kNone) continue;
       const Eigen::Vector2d d = (pairs[hand].target - root).head<2>();
       if (d.norm() > 1e-12) r_face = std::max(0.0, d.normalized().dot(facing));
@@ -147,14 +147,14 @@ StepReward UniHsiStepReward(const std::array<JointPair, sim::kNumContactJoints>&
   return out;
 }
 
-StepCheck CheckUniHsiStep(const std::array<ContactType, sim::kNumContactJoints>& types,
+StepCheck CheckUniHsiStep(const std::array<ContactType, humanoid::kNumContactJoints>& types,
                           const StepReward& reward, bool big_force, int still_steps) {
   StepCheck c;
   bool loose = true, tight = true;
   if (reward.walking) {
     loose = tight = reward.walk_err2 < 0.1;
   } else {
-    for (int j = 0; j < sim::kNumContactJoints; ++j) {
+    for (int j = 0; j < humanoid::kNumContactJoints; ++j) {
       const double e = reward.err2[j];
       if (types[j] == ContactType::kContact) {
         loose = loose && e < 0.3;

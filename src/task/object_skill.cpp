@@ -9,9 +9,9 @@
 #include <cmath>
 
 #include "sims/core/error.h"
+#include "sims/humanoid/features.h"
 #include "sims/scene/builtin.h"
 #include "sims/scene/contact_targets.h"
-#include "sims/sim/features.h"
 
 namespace sims::task {
 
@@ -120,9 +120,9 @@ ClipPlacement ClipPlacement::Align(const Eigen::Vector2d& p_world, double yaw_wo
   return c;
 }
 
-sim::HumanoidPose ClipPlacement::Apply(const sim::HumanoidPose& p) const {
+humanoid::HumanoidPose ClipPlacement::Apply(const humanoid::HumanoidPose& p) const {
   const Eigen::Quaterniond q(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-  sim::HumanoidPose out = p;
+  humanoid::HumanoidPose out = p;
   out.root_pos = Apply(p.root_pos);
   out.root_rot = q * p.root_rot;
   out.root_lin_vel = q * p.root_lin_vel;
@@ -177,8 +177,8 @@ double SeatLateral(const ObjectGeometry& g, Rng& rng) {
   return half > 0 ? rng.Uniform(-half, half) : 0.0;
 }
 
-Eigen::Vector2d FacingOf(const sim::HumanoidPose& pose) {
-  const double h = sim::HeadingAngle(pose.root_rot);
+Eigen::Vector2d FacingOf(const humanoid::HumanoidPose& pose) {
+  const double h = humanoid::HeadingAngle(pose.root_rot);
   return {std::cos(h), std::sin(h)};
 }
 
@@ -241,9 +241,9 @@ void ObjectSkill::SetEpisodeTarget(int env_id, const Eigen::Vector3d& target_W,
 void ObjectSkill::ObserveTask(const sim::EnvView& view, float* out) const {
   if (!observes_object()) return;
   const int i = view.env_id;
-  const sim::BodyStates& b = *view.bodies;
-  const Eigen::Vector3d root = b.pos[sim::kPelvis];
-  const Eigen::Quaterniond h_inv = sim::HeadingInverse(b.rot[sim::kPelvis]);
+  const humanoid::BodyStates& b = *view.bodies;
+  const Eigen::Vector3d root = b.pos[humanoid::kPelvis];
+  const Eigen::Quaterniond h_inv = humanoid::HeadingInverse(b.rot[humanoid::kPelvis]);
   auto put = [&out](const Eigen::Vector3d& v) {
     for (int k = 0; k < 3; ++k) *out++ = static_cast<float>(v[k]);
   };
@@ -306,7 +306,7 @@ void ObjectSkill::SetObjectOverride(int env_id, int k) {
 }
 
 uint32_t ObjectSkill::contact_body_mask() const {
-  using namespace sim;
+  using namespace humanoid;
   return (1u << kLeftFoot) | (1u << kRightFoot) | (1u << kLeftHand) | (1u << kRightHand) |
          (1u << kPelvis) | (1u << kLeftThigh) | (1u << kRightThigh) | (1u << kTorso) |
          (1u << kHead);
@@ -384,7 +384,8 @@ void ObjectSkill::PlaceReference(int env_id, int clip, double t, const ClipPlace
 }
 
 int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g,
-                                     double lateral, Rng& rng, ClipPlacement* placement) const {
+                                     double lateral, Rng& rng, ClipPlacement* placement,
+                                     double max_raise) const {
   if (!context_.motions) return -1;
   std::vector<int> fitting;
   std::vector<ClipPlacement> placements;
@@ -393,7 +394,7 @@ int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const Object
     double yaw_clip = 0, dz = 0;
     if (!ClipFurnitureFrame(context_.motions->clip(c), g, lateral, &p_clip, &yaw_clip, &dz))
       continue;
-    if (std::abs(dz) > kMaxClipHeightMismatch) continue;
+    if (dz < -kMaxClipHeightMismatch || dz > max_raise) continue;
     fitting.push_back(c);
     placements.push_back(
         ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz));

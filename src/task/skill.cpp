@@ -5,7 +5,7 @@
 #include "sims/core/error.h"
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 #include "sims/sim/scene_physics.h"
 #include "sims/task/getup/getup.h"
 #include "sims/task/lie/lie.h"
@@ -88,11 +88,11 @@ void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
     const double t = lib->SampleTime(clip, rng, config_.reference_init_max_fraction);
     motion::ReferenceState ref = lib->StateAt(clip, t);
     const double yaw =
-        sim::HeadingAngle(init->pose.root_rot) - sim::HeadingAngle(ref.pose.root_rot);
+        humanoid::HeadingAngle(init->pose.root_rot) - humanoid::HeadingAngle(ref.pose.root_rot);
     const Eigen::Quaterniond dq(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
     const Eigen::Vector3d anchor(ref.pose.root_pos.x(), ref.pose.root_pos.y(), 0);
     const Eigen::Vector3d place(init->pose.root_pos.x(), init->pose.root_pos.y(), 0);
-    auto move = [&](sim::HumanoidPose p) {
+    auto move = [&](humanoid::HumanoidPose p) {
       p.root_pos = place + dq * (p.root_pos - anchor);
       p.root_rot = dq * p.root_rot;
       p.root_lin_vel = dq * p.root_lin_vel;
@@ -114,12 +114,12 @@ void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
 
 void Skill::Observe(const sim::EnvView& view, float* out) const {
   const int i = view.env_id;
-  const sim::BodyStates& b = *view.bodies;
-  const Eigen::Quaterniond h_inv = sim::HeadingInverse(b.rot[sim::kPelvis]);
+  const humanoid::BodyStates& b = *view.bodies;
+  const Eigen::Quaterniond h_inv = humanoid::HeadingInverse(b.rot[humanoid::kPelvis]);
   float* o = out;
-  for (int j = 0; j < sim::kNumContactJoints; ++j, o += 4) {
+  for (int j = 0; j < humanoid::kNumContactJoints; ++j, o += 4) {
     if (state_[i].mask & (1u << j)) {
-      const Eigen::Vector3d d = h_inv * (state_[i].goals[j] - sim::ContactJointPosition(b, j));
+      const Eigen::Vector3d d = h_inv * (state_[i].goals[j] - humanoid::ContactJointPosition(b, j));
       o[0] = static_cast<float>(d.x());
       o[1] = static_cast<float>(d.y());
       o[2] = static_cast<float>(d.z());
@@ -130,7 +130,8 @@ void Skill::Observe(const sim::EnvView& view, float* out) const {
   }
   ObserveTask(view, o);
   o += task_obs_dim();
-  heightmap_->SampleOne(b.pos[sim::kPelvis], sim::HeadingAngle(b.rot[sim::kPelvis]), o);
+  heightmap_->SampleOne(b.pos[humanoid::kPelvis], humanoid::HeadingAngle(b.rot[humanoid::kPelvis]),
+                        o);
   o += heightmap_->size();
   const Eigen::VectorXf* z = nullptr;
   if (config_.style_conditioned) {
@@ -219,8 +220,8 @@ SkillSetup CreateSkill(const SkillConfig& config, int num_envs, uint64_t seed,
   ctx.scene = scene_override
                   ? scene_override
                   : std::make_shared<const scene::Scene>(info.build_scene(config, scene_rng));
-  ctx.humanoid =
-      std::make_shared<const sim::Humanoid>(sim::BuildModel(sim::CompileSceneGeometry(*ctx.scene)));
+  ctx.humanoid = std::make_shared<const humanoid::Humanoid>(
+      humanoid::BuildModel(sim::CompileSceneGeometry(*ctx.scene)));
   ctx.ray_caster = std::make_shared<const scene::RayCaster>(*ctx.scene);
   ctx.height_grid = std::make_shared<const scene::SceneHeightGrid>(*ctx.scene, *ctx.ray_caster,
                                                                    scene::HeightGridConfig{});

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::task {
 
@@ -38,18 +38,18 @@ void SurfaceSkill::SampleTask(int i, Rng& rng) {
                    g.ToWorld(task_.anchor_local(g, lateral_[i])).head<2>());
 }
 
-double SurfaceSkill::UpdateGoals(int i, const sim::BodyStates& b, double* success_distance) {
+double SurfaceSkill::UpdateGoals(int i, const humanoid::BodyStates& b, double* success_distance) {
   const ObjectGeometry& g = geometry(i);
   const scene::Scene& s = *context_.scene;
   ClearGoals(i);
-  const Eigen::Vector3d x = sim::ContactJointPosition(b, sim::kCjPelvis);
+  const Eigen::Vector3d x = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
   const Eigen::Vector3d& m = target(i);
-  SetGoal(i, sim::kCjPelvis, m);
+  SetGoal(i, humanoid::kCjPelvis, m);
   double sum = (m - x).squaredNorm();
   double worst = (m - x).norm();
   const std::vector<int>& parts = extra_parts_[object(i)];
   if (!parts.empty()) {
-    const Eigen::Vector3d h = sim::ContactJointPosition(b, task_.extra_joint);
+    const Eigen::Vector3d h = humanoid::ContactJointPosition(b, task_.extra_joint);
     Eigen::Vector3d best = Eigen::Vector3d::Zero();
     double best_d2 = std::numeric_limits<double>::infinity();
     for (int p : parts) {

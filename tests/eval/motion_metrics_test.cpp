@@ -2,13 +2,13 @@
 
 #include <gtest/gtest.h>
 
-#include "sims/sim/model_builder.h"
+#include "sims/humanoid/model_builder.h"
 
 namespace sims::eval {
 namespace {
 
-std::shared_ptr<const sim::Humanoid> Humanoid() {
-  static auto h = std::make_shared<const sim::Humanoid>(sim::BuildModel());
+std::shared_ptr<const humanoid::Humanoid> Humanoid() {
+  static auto h = std::make_shared<const humanoid::Humanoid>(humanoid::BuildModel());
   return h;
 }
 
@@ -16,7 +16,7 @@ std::shared_ptr<const sim::Humanoid> Humanoid() {
 io::MotionRecord Standing(double speed, int frames = 31, Eigen::Vector3d start = {0, 0, 0.89}) {
   io::MotionRecordBuilder b(Humanoid());
   for (int t = 0; t < frames; ++t) {
-    sim::HumanoidPose p;
+    humanoid::HumanoidPose p;
     p.root_pos = start + Eigen::Vector3d(speed * t / 30.0, 0, 0);
     b.AddFrame(p);
   }

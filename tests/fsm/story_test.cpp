@@ -69,12 +69,12 @@ class StoryRunnerTest : public ::testing::Test {
     runner_ = std::make_unique<StoryRunner>(scene_, LoadPolicySet(TinyPolicySet()), o);
     // Scripted stand-in: hold the standing pose (the unit under test is the FSM, not a policy).
     runner_->SetActionOverride([this](const std::string&, const float*, float* a) {
-      std::fill(a, a + sim::kNumDofs, 0.0f);
-      const double standing[sim::kNumDofs] = {0};
+      std::fill(a, a + humanoid::kNumDofs, 0.0f);
+      const double standing[humanoid::kNumDofs] = {0};
       if (!collapse_)
         runner_->humanoid()->TargetsToAction(standing, a);
       else
-        std::fill(a, a + sim::kNumDofs, -1.0f);
+        std::fill(a, a + humanoid::kNumDofs, -1.0f);
     });
   }
   std::shared_ptr<scene::Scene> scene_;
@@ -125,7 +125,7 @@ TEST_F(StoryRunnerTest, WithoutGetUpTheCharacterIsResetStandingAndTheStoryGoesOn
   // The frame after the fall stands at the default height, and every frame stays on the clock.
   const int first_after = static_cast<int>(std::round(r.keyframes[0].end_time * 30.0));
   ASSERT_LT(first_after, static_cast<int>(frames.size()));
-  EXPECT_NEAR(frames[first_after].root_pos.z(), sim::kDefaultRootHeight, 1e-6);
+  EXPECT_NEAR(frames[first_after].root_pos.z(), humanoid::kDefaultRootHeight, 1e-6);
   EXPECT_LT(frames[first_after - 1].root_pos.z(), 0.4) << "it had fallen";
   for (size_t f = 0; f < frames.size(); ++f) EXPECT_NEAR(frames[f].time, f / 30.0, 1e-9);
 }
@@ -165,9 +165,9 @@ TEST(StoryRecoveryTest, AFallHandsOverToTheGetUpPolicyBeforeTheStoryGoesOn) {
   std::vector<std::string> skills_seen;
   runner.SetActionOverride([&](const std::string& skill, const float*, float* a) {
     if (skills_seen.empty() || skills_seen.back() != skill) skills_seen.push_back(skill);
-    const double standing[sim::kNumDofs] = {0};
+    const double standing[humanoid::kNumDofs] = {0};
     if (skill == "walk")
-      std::fill(a, a + sim::kNumDofs, -1.0f);
+      std::fill(a, a + humanoid::kNumDofs, -1.0f);
     else
       runner.humanoid()->TargetsToAction(standing, a);
   });
@@ -200,7 +200,7 @@ TEST(StoryRecoveryTest, ASuccessfulGetUpRetriesTheKeyframeUntilRetriesRunOut) {
     std::vector<std::string> skills_seen;
     runner.SetActionOverride([&](const std::string& skill, const float*, float* a) {
       if (skills_seen.empty() || skills_seen.back() != skill) skills_seen.push_back(skill);
-      const double standing[sim::kNumDofs] = {0};
+      const double standing[humanoid::kNumDofs] = {0};
       runner.humanoid()->TargetsToAction(standing, a);
     });
     const Instruction walk = WalkTo({3, 4, 0});
@@ -230,7 +230,7 @@ TEST(StoryRecoveryTest, AGetUpFromTheFloorWhileStandingSucceedsAtOnce) {
   o.skill_timeout_s = 3.0;
   StoryRunner runner(scene, LoadPolicySet(TinyPolicySetWithGetUp()), o);
   runner.SetActionOverride([&](const std::string&, const float*, float* a) {
-    const double standing[sim::kNumDofs] = {0};
+    const double standing[humanoid::kNumDofs] = {0};
     runner.humanoid()->TargetsToAction(standing, a);
   });
   Instruction up;
@@ -317,9 +317,9 @@ TEST(StoryBatchTest, BatchedStoriesEqualStoriesRunOneAtATime) {
       const StoryRunner* self = r.get();
       // The walk collapses, the get-up holds the standing targets (and times out).
       r->SetActionOverride([self](const std::string& skill, const float*, float* a) {
-        const double standing[sim::kNumDofs] = {0};
+        const double standing[humanoid::kNumDofs] = {0};
         if (skill == "walk")
-          std::fill(a, a + sim::kNumDofs, -1.0f);
+          std::fill(a, a + humanoid::kNumDofs, -1.0f);
         else
           self->humanoid()->TargetsToAction(standing, a);
       });
@@ -398,7 +398,7 @@ TEST(InstructionTest, ScenePlanStepsBecomeWalkAndUnifiedInstructions) {
   EXPECT_EQ(in[0].object_name, "chair000");
   EXPECT_EQ(in[1].skill, "unified");
   ASSERT_TRUE(in[1].target.contact_step);
-  EXPECT_EQ(in[1].target.contact_step->mask(), 1u << sim::kCjPelvis);
+  EXPECT_EQ(in[1].target.contact_step->mask(), 1u << humanoid::kCjPelvis);
   EXPECT_NE(in[1].caption.find("pelvis on"), std::string::npos) << in[1].caption;
 }
 

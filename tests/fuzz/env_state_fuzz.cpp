@@ -11,9 +11,9 @@
 
 #include "fuzz_util.h"
 #include "sims/core/error.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/motion/synthetic.h"
 #include "sims/sim/env.h"
-#include "sims/sim/model_builder.h"
 #include "sims/task/skill.h"
 
 namespace {
@@ -58,7 +58,7 @@ std::vector<Target>& Targets() {
     {
       Target t;
       t.env = std::make_unique<sims::sim::BatchedEnv>(
-          std::make_shared<const sims::sim::Humanoid>(sims::sim::BuildModel()), ec);
+          std::make_shared<const sims::humanoid::Humanoid>(sims::humanoid::BuildModel()), ec);
       out.push_back(std::move(t));
     }
     for (const SkillConfig& c : configs) {

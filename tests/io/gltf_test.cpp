@@ -38,7 +38,7 @@ void Import(const std::filesystem::path& path, Imported* out) {
 
 // Nodes the exporter must write: world, 15 bodies, scene, objects, parts, floor.
 int ExpectedNodes(const scene::Scene& s) {
-  int n = 1 + sim::kNumBodies + 1 + 1;
+  int n = 1 + humanoid::kNumBodies + 1 + 1;
   for (const auto& o : s.objects) n += 1 + static_cast<int>(o.parts.size());
   if (!s.walls.empty()) n += 1;
   return n;
@@ -58,7 +58,7 @@ TEST(GltfTest, GlbReimportsWithBvhSkeletonAndAnimation) {
   // The character hierarchy is the BVH's: same names, same parents.
   const motion::BvhMotion bvh =
       motion::HumanoidClipToBvh(RecordToClip(rec), motion::HumanoidSkeleton::Default());
-  ASSERT_EQ(bvh.joints.size(), static_cast<std::size_t>(sim::kNumBodies));
+  ASSERT_EQ(bvh.joints.size(), static_cast<std::size_t>(humanoid::kNumBodies));
   for (const auto& j : bvh.joints) {
     ASSERT_TRUE(imp.nodes.count(j.name)) << "no node " << j.name;
     const aiNode* n = imp.nodes[j.name];
@@ -72,7 +72,7 @@ TEST(GltfTest, GlbReimportsWithBvhSkeletonAndAnimation) {
   const aiAnimation* anim = imp.scene->mAnimations[0];
   const double tps = anim->mTicksPerSecond > 0 ? anim->mTicksPerSecond : 1.0;
   EXPECT_NEAR(anim->mDuration / tps, rec.duration(), 1e-3);
-  EXPECT_EQ(anim->mNumChannels, static_cast<unsigned>(sim::kNumBodies));
+  EXPECT_EQ(anim->mNumChannels, static_cast<unsigned>(humanoid::kNumBodies));
   for (unsigned c = 0; c < anim->mNumChannels; ++c) {
     const aiNodeAnim* ch = anim->mChannels[c];
     EXPECT_EQ(ch->mNumRotationKeys, static_cast<unsigned>(rec.num_frames()));
@@ -96,10 +96,10 @@ TEST(GltfTest, GlbReimportsWithBvhSkeletonAndAnimation) {
     if (ch->mNumPositionKeys > 0) t = ch->mPositionKeys[ch->mNumPositionKeys - 1].mValue;
     local[ch->mNodeName.C_Str()] = aiMatrix4x4(aiVector3D(1, 1, 1), q, t);
   }
-  const int hand = sim::kLeftHand;
+  const int hand = humanoid::kLeftHand;
   aiMatrix4x4 X;
-  for (const aiNode* n = imp.nodes[sim::BodyNames()[hand]]; n && n->mName != aiString("sims_world");
-       n = n->mParent)
+  for (const aiNode* n = imp.nodes[humanoid::BodyNames()[hand]];
+       n && n->mName != aiString("sims_world"); n = n->mParent)
     X = local[n->mName.C_Str()] * X;
   const aiVector3D p = X * aiVector3D(0, 0, 0);
   const Eigen::Vector3d& want = rec.frames.back().body_pos[hand];
@@ -115,7 +115,7 @@ TEST(GltfTest, GltfWithBinSidecarAndCharacterOnly) {
   EXPECT_TRUE(std::filesystem::exists(dir / "motion.bin"));
   Imported imp;
   ASSERT_NO_FATAL_FAILURE(Import(dir / "motion.gltf", &imp));
-  EXPECT_EQ(imp.node_count, 1 + sim::kNumBodies + 1);  // world, bodies, floor
+  EXPECT_EQ(imp.node_count, 1 + humanoid::kNumBodies + 1);  // world, bodies, floor
   ASSERT_EQ(imp.scene->mNumAnimations, 1u);
   const aiAnimation* anim = imp.scene->mAnimations[0];
   EXPECT_NEAR(anim->mDuration / anim->mTicksPerSecond, rec.duration(), 1e-3);

@@ -13,15 +13,15 @@ namespace sims::io::testing {
 
 /// A simple procedural walk pose at time t: the root moves at 1 m/s along a left-turning arc
 /// (0.4 rad/s), legs and arms swing at 0.9 Hz (kept here so the io tests need no motion data).
-inline sim::HumanoidPose WalkPose(double t) {
-  sim::HumanoidPose p;
+inline humanoid::HumanoidPose WalkPose(double t) {
+  humanoid::HumanoidPose p;
   const double yaw = 0.4 * t, r = 1.0 / 0.4;
   p.root_pos = Eigen::Vector3d(r * std::sin(yaw), r * (1 - std::cos(yaw)),
                                0.87 + 0.02 * std::cos(4 * M_PI * 0.9 * t));
   p.root_rot = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
   const double ph = 2 * M_PI * 0.9 * t;
   auto dof = [](const char* joint, int axis) {
-    for (const auto& j : sim::Joints())
+    for (const auto& j : humanoid::Joints())
       if (std::string(j.name) == joint) return j.dof_offset + axis;
     return -1;
   };

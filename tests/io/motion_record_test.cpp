@@ -38,8 +38,8 @@ TEST(MotionRecordTest, BuilderComputesBodiesAndKeyframeRanges) {
     motion::SkeletonPose pose;
     motion::SkeletonForwardKinematics(skel, fr.root_pos, fr.root_rot, fr.dof_pos, &pose);
     EXPECT_NEAR(fr.time, f / 30.0, 1e-12);
-    EXPECT_TRUE(fr.body_pos[sim::kPelvis].isApprox(fr.root_pos, 1e-12));
-    for (int b = 0; b < sim::kNumBodies; ++b) {
+    EXPECT_TRUE(fr.body_pos[humanoid::kPelvis].isApprox(fr.root_pos, 1e-12));
+    for (int b = 0; b < humanoid::kNumBodies; ++b) {
       EXPECT_LT((fr.body_pos[b] - pose.pos[b]).norm(), 1e-9) << b;
       EXPECT_LT(fr.body_rot[b].angularDistance(pose.rot[b]), 1e-9) << b;
     }
@@ -51,8 +51,8 @@ TEST(MotionRecordTest, UnreachedAndUnfinishedKeyframes) {
   KeyframeAnnotation a;
   a.skill = "walk";
   b.BeginKeyframe(a);
-  b.AddFrame(sim::HumanoidPose{});
-  b.AddFrame(sim::HumanoidPose{});
+  b.AddFrame(humanoid::HumanoidPose{});
+  b.AddFrame(humanoid::HumanoidPose{});
   a.index = 1;
   a.skill = "sit";
   b.BeginKeyframe(a);            // closes "walk" as failed
@@ -62,7 +62,7 @@ TEST(MotionRecordTest, UnreachedAndUnfinishedKeyframes) {
   b.AddKeyframe(a);  // never reached (-1, -1)
   a.index = 3;
   b.BeginKeyframe(a);
-  b.AddFrame(sim::HumanoidPose{});
+  b.AddFrame(humanoid::HumanoidPose{});
   const MotionRecord rec = b.Finish();  // closes keyframe 3 as unfinished
   ASSERT_EQ(rec.keyframes.size(), 4u);
   EXPECT_EQ(rec.keyframes[0].end_frame, 1);
@@ -98,7 +98,7 @@ TEST(MotionRecordTest, JsonRoundTrip) {
   for (int f = 0; f < rec.num_frames(); ++f) {
     EXPECT_LT((back.frames[f].root_pos - rec.frames[f].root_pos).norm(), 2e-6);
     EXPECT_LT((back.frames[f].dof_pos - rec.frames[f].dof_pos).cwiseAbs().maxCoeff(), 1e-6);
-    for (int b = 0; b < sim::kNumBodies; ++b) {
+    for (int b = 0; b < humanoid::kNumBodies; ++b) {
       EXPECT_LT((back.frames[f].body_pos[b] - rec.frames[f].body_pos[b]).norm(), 2e-6);
       EXPECT_LT(back.frames[f].body_rot[b].angularDistance(rec.frames[f].body_rot[b]), 1e-5);
     }
@@ -107,7 +107,7 @@ TEST(MotionRecordTest, JsonRoundTrip) {
   const nlohmann::json j = ReadJsonFile(dir / "motion.json");
   EXPECT_EQ(j["format"], kMotionRecordFormat);
   EXPECT_EQ(j["skeleton"]["bodies"][0], "pelvis");
-  EXPECT_EQ(j["skeleton"]["dofs"].size(), static_cast<std::size_t>(sim::kNumDofs));
+  EXPECT_EQ(j["skeleton"]["dofs"].size(), static_cast<std::size_t>(humanoid::kNumDofs));
   EXPECT_EQ(j["num_frames"], rec.num_frames());
 }
 
@@ -163,7 +163,8 @@ TEST(MotionRecordTest, ClipsConvertBothWays) {
   ASSERT_EQ(back.keyframes.size(), 1u);
   EXPECT_EQ(back.keyframes[0].end_frame, rec.num_frames() - 1);
   EXPECT_LT(
-      (back.frames.back().body_pos[sim::kHead] - rec.frames.back().body_pos[sim::kHead]).norm(),
+      (back.frames.back().body_pos[humanoid::kHead] - rec.frames.back().body_pos[humanoid::kHead])
+          .norm(),
       1e-5);
 }
 

@@ -83,7 +83,7 @@ TEST(VideoTest, BadOptionsAndMissingFfmpegAreClearErrors) {
   VideoOptions opt;
   opt.width = 161;
   try {
-    RenderVideo(rec, sim::StaticGeometry{}, dir / "a.mp4", opt);
+    RenderVideo(rec, humanoid::StaticGeometry{}, dir / "a.mp4", opt);
     FAIL() << "odd width accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("width"), std::string::npos) << e.what();
@@ -91,7 +91,7 @@ TEST(VideoTest, BadOptionsAndMissingFfmpegAreClearErrors) {
   opt = VideoOptions{};
   opt.ffmpeg = "sims-no-such-ffmpeg";
   try {
-    RenderVideo(rec, sim::StaticGeometry{}, dir / "a.mp4", opt);
+    RenderVideo(rec, humanoid::StaticGeometry{}, dir / "a.mp4", opt);
     FAIL() << "missing ffmpeg accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("sims-no-such-ffmpeg"), std::string::npos) << e.what();

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "sims/core/rng.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/learning/vec_env.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::learning::testing {
 
@@ -33,9 +33,9 @@ inline const char* kPointMassXml = R"(
 class PointMassEnv : public VecEnv {
  public:
   PointMassEnv(int n, uint64_t seed) : n_(n) {
-    model_ = sim::LoadModelFromXml(kPointMassXml, "point mass");
+    model_ = humanoid::LoadModelFromXml(kPointMassXml, "point mass");
     for (int i = 0; i < n; ++i) {
-      data_.push_back(sim::MakeData(model_.get()));
+      data_.push_back(humanoid::MakeData(model_.get()));
       rng_.push_back(Rng::ForEnv(seed, i));
     }
     goal_.assign(2 * n, 0);
@@ -156,8 +156,8 @@ class PointMassEnv : public VecEnv {
   }
 
   int n_;
-  sim::MjModelPtr model_;
-  std::vector<sim::MjDataPtr> data_;
+  humanoid::MjModelPtr model_;
+  std::vector<humanoid::MjDataPtr> data_;
   std::vector<Rng> rng_;
   std::vector<double> goal_;
   std::vector<int> t_, styles_;

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "motion/motion_test_util.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::motion {
 namespace {
@@ -41,32 +41,33 @@ TEST(MirrorTest, ReflectsBodiesAcrossTheSagittalPlane) {
   const auto a = ClipBodyStates(clip, *h);
   const auto b = ClipBodyStates(m, *h);
   auto partner = [](int body) {
-    std::string n = sim::BodyNames()[body];
+    std::string n = humanoid::BodyNames()[body];
     if (n.rfind("left_", 0) == 0)
       n = "right_" + n.substr(5);
     else if (n.rfind("right_", 0) == 0)
       n = "left_" + n.substr(6);
-    return sim::BodyByName(n);
+    return humanoid::BodyByName(n);
   };
   for (int f = 0; f < clip.num_frames(); ++f) {
-    for (int body = 0; body < sim::kNumBodies; ++body) {
+    for (int body = 0; body < humanoid::kNumBodies; ++body) {
       const int p = partner(body);
-      EXPECT_LT((b[f].pos[p] - S * a[f].pos[body]).norm(), 1e-9) << sim::BodyNames()[body];
+      EXPECT_LT((b[f].pos[p] - S * a[f].pos[body]).norm(), 1e-9) << humanoid::BodyNames()[body];
       const Eigen::Matrix3d want = S * a[f].rot[body].toRotationMatrix() * S;
-      EXPECT_LT((b[f].rot[p].toRotationMatrix() - want).norm(), 1e-9) << sim::BodyNames()[body];
+      EXPECT_LT((b[f].rot[p].toRotationMatrix() - want).norm(), 1e-9)
+          << humanoid::BodyNames()[body];
       // Interior frames: velocities come from the mirrored frames and must reflect exactly
       // (angular velocity is a pseudo-vector: ω → −S·ω).
       EXPECT_LT((b[f].lin_vel[p] - S * a[f].lin_vel[body]).norm(), 1e-6);
       EXPECT_LT((b[f].ang_vel[p] + S * a[f].ang_vel[body]).norm(), 1e-6);
     }
-    for (int i = 0; i < sim::kNumDofs; ++i) {
+    for (int i = 0; i < humanoid::kNumDofs; ++i) {
       EXPECT_GE(m.frame(f).dof_pos[i], s.lower[i] - 1e-12);
       EXPECT_LE(m.frame(f).dof_pos[i], s.upper[i] + 1e-12);
     }
   }
   // MirrorPose agrees with mirroring the frames.
-  const sim::HumanoidPose p = MirrorPose(clip.SamplePose(0.2));
-  const sim::HumanoidPose q = m.SamplePose(0.2);
+  const humanoid::HumanoidPose p = MirrorPose(clip.SamplePose(0.2));
+  const humanoid::HumanoidPose q = m.SamplePose(0.2);
   EXPECT_LT((p.root_ang_vel - q.root_ang_vel).norm(), 1e-9);
   EXPECT_LT((p.dof_vel - q.dof_vel).norm(), 1e-9);
 }

@@ -7,8 +7,8 @@
 #include "common/test_util.h"
 #include "motion/motion_test_util.h"
 #include "sims/core/error.h"
-#include "sims/sim/features.h"
-#include "sims/sim/model_builder.h"
+#include "sims/humanoid/features.h"
+#include "sims/humanoid/model_builder.h"
 
 namespace sims::motion {
 namespace {
@@ -85,10 +85,10 @@ TEST(MotionClipTest, SamplingAndVelocities) {
   const MotionClip clip(30.0, fr);
   EXPECT_NEAR(clip.duration(), 1.0, 1e-12);
   for (double t : {0.0, 0.31, 0.5, 0.99, 1.0, 2.0}) {
-    const sim::HumanoidPose p = clip.SamplePose(t);
+    const humanoid::HumanoidPose p = clip.SamplePose(t);
     const double tc = std::min(t, 1.0);
     EXPECT_LT((p.root_pos - (Eigen::Vector3d(0, 0, 0.9) + v * tc)).norm(), 1e-9) << t;
-    EXPECT_NEAR(sim::HeadingAngle(p.root_rot), w * tc, 1e-9);
+    EXPECT_NEAR(humanoid::HeadingAngle(p.root_rot), w * tc, 1e-9);
     EXPECT_LT((p.root_lin_vel - v).norm(), 1e-9) << t;
     EXPECT_LT((p.root_ang_vel - Eigen::Vector3d(0, 0, w)).norm(), 1e-9) << t;
     EXPECT_LT((p.dof_vel - rate).norm(), 1e-9) << t;
@@ -103,14 +103,14 @@ TEST(MotionClipTest, SamplingAndVelocities) {
   EXPECT_THROW(MotionClip(30.0, {}), Error);
 }
 
-// FK of clip frames (sim::ForwardKinematics) equals MuJoCo's full mj_forward replay.
+// FK of clip frames (humanoid::ForwardKinematics) equals MuJoCo's full mj_forward replay.
 TEST(MotionClipTest, ForwardKinematicsMatchesMujocoReplay) {
   const MotionClip clip = WigglyClip(30, 4);
   const auto h = HumanoidSkeleton::DefaultHumanoid();
-  const std::vector<sim::BodyStates> fk = ClipBodyStates(clip, *h);
-  sim::MjDataPtr d = sim::MakeData(h->model());
+  const std::vector<humanoid::BodyStates> fk = ClipBodyStates(clip, *h);
+  humanoid::MjDataPtr d = humanoid::MakeData(h->model());
   for (int f = 0; f < clip.num_frames(); ++f) {
-    const sim::HumanoidPose p = clip.FramePose(f);
+    const humanoid::HumanoidPose p = clip.FramePose(f);
     // Replay through raw qpos/qvel.
     double* q = d->qpos + h->root_qpos_adr();
     q[0] = p.root_pos.x(), q[1] = p.root_pos.y(), q[2] = p.root_pos.z();
@@ -120,7 +120,7 @@ TEST(MotionClipTest, ForwardKinematicsMatchesMujocoReplay) {
       d->qvel[h->root_qvel_adr() + k] = p.root_lin_vel[k];
       d->qvel[h->root_qvel_adr() + 3 + k] = wl[k];
     }
-    for (int i = 0; i < sim::kNumDofs; ++i) {
+    for (int i = 0; i < humanoid::kNumDofs; ++i) {
       d->qpos[h->dof_qpos_adr(i)] = p.dof_pos[i];
       d->qvel[h->dof_qvel_adr(i)] = p.dof_vel[i];
     }
@@ -128,9 +128,9 @@ TEST(MotionClipTest, ForwardKinematicsMatchesMujocoReplay) {
       testing::ScopedAllowMujocoWarnings allow;  // wiggly poses may self-intersect
       mj_forward(h->model(), d.get());
     }
-    sim::BodyStates replay;
-    sim::ReadBodyStates(*h, d.get(), &replay);
-    for (int b = 0; b < sim::kNumBodies; ++b) {
+    humanoid::BodyStates replay;
+    humanoid::ReadBodyStates(*h, d.get(), &replay);
+    for (int b = 0; b < humanoid::kNumBodies; ++b) {
       EXPECT_LT((fk[f].pos[b] - replay.pos[b]).norm(), 1e-9);
       EXPECT_LT(fk[f].rot[b].angularDistance(replay.rot[b]), 1e-9);
       EXPECT_LT((fk[f].lin_vel[b] - replay.lin_vel[b]).norm(), 1e-9);

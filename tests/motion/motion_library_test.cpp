@@ -107,13 +107,11 @@ TEST(MotionLibraryTest, HistoryAndWindowOrder) {
   // Near the start the history clamps at t = 0.
   const ReferenceState early = lib.StateAt(1, 0.05);
   EXPECT_LT((early.history[8].root_pos - lib.clip(1).SamplePose(0).root_pos).norm(), 1e-12);
-  sim::InitialState init;
   Rng rng(1);
-  lib.SampleInitialState(rng, &init);
-  EXPECT_TRUE(init.reference);
-  EXPECT_EQ(init.history.size(), 9u);
+  const ReferenceState drawn = lib.SampleReferenceState(rng);
+  EXPECT_EQ(drawn.history.size(), 9u);
 
-  sim::MjDataPtr d = sim::MakeData(lib.humanoid().model());
+  humanoid::MjDataPtr d = humanoid::MakeData(lib.humanoid().model());
   std::vector<float> window(1250), step(125);
   lib.AmpWindow(1, 1.0, d.get(), window.data());
   for (int k = 0; k < 10; ++k) {
@@ -168,12 +166,12 @@ TEST(MotionLibraryTest, AmpFeaturesEqualTheEnvironments) {
   const double t0 = 1.2;
   auto hook = std::make_shared<ReferenceInitHook>(&lib, 1, t0);
   sim::BatchedEnv env(h, c, hook);
-  sim::MjDataPtr d = sim::MakeData(h->model());
+  humanoid::MjDataPtr d = humanoid::MakeData(h->model());
   std::vector<float> from_env(125), from_clip(125);
   testing::ScopedAllowMujocoWarnings allow;
   for (int f = 0; f < lib.clip(1).num_frames(); f += 3) {
     env.SetState(0, lib.clip(1).FramePose(f));
-    sim::ComputeAmpObservation(env.pose(0), env.bodies(0), lib.obs_options(), from_env.data());
+    humanoid::ComputeAmpObservation(env.pose(0), env.bodies(0), lib.obs_options(), from_env.data());
     lib.AmpObservation(1, f / 30.0, d.get(), from_clip.data());
     for (int i = 0; i < 125; ++i)
       ASSERT_NEAR(from_env[i], from_clip[i], 2e-5) << "frame " << f << " i " << i;

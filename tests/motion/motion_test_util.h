@@ -17,12 +17,12 @@ inline MotionClip WigglyClip(int frames, uint64_t seed, double amplitude = 0.4,
   const DofVector mid = around_zero ? DofVector::Zero() : DofVector(0.5 * (s.lower + s.upper));
   const DofVector amp = amplitude * (s.upper - s.lower);
   DofVector phase, freq;
-  for (int i = 0; i < sim::kNumDofs; ++i)
+  for (int i = 0; i < humanoid::kNumDofs; ++i)
     phase[i] = rng.Uniform(0, 6.28), freq[i] = rng.Uniform(0.5, 2);
   std::vector<MotionFrame> fr(frames);
   for (int f = 0; f < frames; ++f) {
     const double t = f / 30.0;
-    for (int i = 0; i < sim::kNumDofs; ++i) {
+    for (int i = 0; i < humanoid::kNumDofs; ++i) {
       const double v = mid[i] + amp[i] * std::sin(freq[i] * t + phase[i]);
       fr[f].dof_pos[i] = std::clamp(v, s.lower[i], s.upper[i]);
     }

@@ -49,7 +49,7 @@ TEST_F(CmuRetarget, FeetOnTheFloorInStanceAndLimitsRespected) {
   double lowest = 1e9;
   for (int f = 0; f < clip_->num_frames(); ++f) {
     const MotionFrame& fr = clip_->frame(f);
-    for (int i = 0; i < sim::kNumDofs; ++i) {
+    for (int i = 0; i < humanoid::kNumDofs; ++i) {
       EXPECT_GE(fr.dof_pos[i], s.lower[i] - 1e-9);
       EXPECT_LE(fr.dof_pos[i], s.upper[i] + 1e-9);
     }
@@ -58,7 +58,7 @@ TEST_F(CmuRetarget, FeetOnTheFloorInStanceAndLimitsRespected) {
       const double h = SoleHeight(s, cur, left);
       lowest = std::min(lowest, h);
       if (f == 0) continue;
-      const int foot = left ? sim::kLeftFoot : sim::kRightFoot;
+      const int foot = left ? humanoid::kLeftFoot : humanoid::kRightFoot;
       const Eigen::Vector3d v = (cur.pos[foot] - prev.pos[foot]) * clip_->fps();
       if (v.head<2>().norm() < 0.1 && std::abs(v.z()) < 0.1) {  // the foot is planted
         ++stance;
@@ -73,15 +73,15 @@ TEST_F(CmuRetarget, FeetOnTheFloorInStanceAndLimitsRespected) {
   // Few clamps: the map and rest alignment fit the CMU skeleton.
   int clamped = 0;
   for (const auto& [dof, cs] : report_.clamped) clamped += cs.frames;
-  EXPECT_LT(clamped, 0.05 * report_.source_frames * sim::kNumDofs);
+  EXPECT_LT(clamped, 0.05 * report_.source_frames * humanoid::kNumDofs);
 }
 
 TEST_F(CmuRetarget, SegmentLengthsOfTheHumanoidArePreserved) {
   const auto h = HumanoidSkeleton::DefaultHumanoid();
   const HumanoidSkeleton& s = HumanoidSkeleton::Default();
-  const std::vector<sim::BodyStates> states = ClipBodyStates(*clip_, *h);
+  const std::vector<humanoid::BodyStates> states = ClipBodyStates(*clip_, *h);
   for (int f = 0; f < clip_->num_frames(); f += 7)
-    for (int b = 1; b < sim::kNumBodies; ++b)
+    for (int b = 1; b < humanoid::kNumBodies; ++b)
       EXPECT_NEAR((states[f].pos[b] - states[f].pos[s.parent[b]]).norm(), s.offset[b].norm(), 1e-9);
   // Standing/walking root height of a 0.89 m humanoid.
   int plausible = 0;

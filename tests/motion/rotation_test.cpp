@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sims/core/rng.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::motion {
 namespace {
@@ -28,12 +28,12 @@ TEST(RotationTest, EulerRoundTripAllOrders) {
 
 TEST(RotationTest, HingeTripleMatchesSimAndPrefersLimits) {
   const Eigen::Vector3d a(0.2, -0.4, 0.9);
-  const Eigen::Quaterniond q = sim::HingeTripleRotation(a[0], a[1], a[2]);
+  const Eigen::Quaterniond q = humanoid::HingeTripleRotation(a[0], a[1], a[2]);
   const Eigen::Vector3d lo(-1, -1, -1), hi(1, 1, 1);
   EXPECT_LT((DecomposeHingeTriple(q, lo, hi) - a).norm(), 1e-9);
   // A shoulder raised overhead (y = −170°) lies outside asin's range: the limits pick it.
   const Eigen::Vector3d b(0.1, -170 * M_PI / 180, 0.2);
-  const Eigen::Quaterniond qb = sim::HingeTripleRotation(b[0], b[1], b[2]);
+  const Eigen::Quaterniond qb = humanoid::HingeTripleRotation(b[0], b[1], b[2]);
   const Eigen::Vector3d got = DecomposeHingeTriple(qb, Eigen::Vector3d(-M_PI, -M_PI, -M_PI / 2),
                                                    Eigen::Vector3d(M_PI / 4, M_PI / 3, M_PI / 2));
   EXPECT_LT((got - b).norm(), 1e-9);

@@ -3,14 +3,14 @@
 #include <gtest/gtest.h>
 
 #include "sims/core/rng.h"
-#include "sims/sim/state.h"
+#include "sims/humanoid/state.h"
 
 namespace sims::motion {
 namespace {
 
 DofVector RandomDofs(const HumanoidSkeleton& s, Rng& rng) {
   DofVector d;
-  for (int i = 0; i < sim::kNumDofs; ++i) d[i] = rng.Uniform(s.lower[i], s.upper[i]);
+  for (int i = 0; i < humanoid::kNumDofs; ++i) d[i] = rng.Uniform(s.lower[i], s.upper[i]);
   return d;
 }
 
@@ -18,21 +18,21 @@ DofVector RandomDofs(const HumanoidSkeleton& s, Rng& rng) {
 TEST(SkeletonTest, ForwardKinematicsMatchesMujoco) {
   const auto h = HumanoidSkeleton::DefaultHumanoid();
   const HumanoidSkeleton& s = HumanoidSkeleton::Default();
-  sim::MjDataPtr d = sim::MakeData(h->model());
+  humanoid::MjDataPtr d = humanoid::MakeData(h->model());
   Rng rng(5);
   for (int trial = 0; trial < 20; ++trial) {
-    sim::HumanoidPose pose;
+    humanoid::HumanoidPose pose;
     pose.root_pos = Eigen::Vector3d(rng.Uniform(-2, 2), rng.Uniform(-2, 2), rng.Uniform(0.5, 1));
     pose.root_rot =
         Eigen::Quaterniond(rng.Normal(), rng.Normal(), rng.Normal(), rng.Normal()).normalized();
     pose.dof_pos = RandomDofs(s, rng);
-    sim::BodyStates bodies;
-    sim::ForwardKinematics(*h, pose, d.get(), &bodies);
+    humanoid::BodyStates bodies;
+    humanoid::ForwardKinematics(*h, pose, d.get(), &bodies);
     SkeletonPose sp;
     SkeletonForwardKinematics(s, pose.root_pos, pose.root_rot, pose.dof_pos, &sp);
-    for (int b = 0; b < sim::kNumBodies; ++b) {
-      EXPECT_LT((sp.pos[b] - bodies.pos[b]).norm(), 1e-9) << sim::BodyNames()[b];
-      EXPECT_LT(sp.rot[b].angularDistance(bodies.rot[b]), 1e-9) << sim::BodyNames()[b];
+    for (int b = 0; b < humanoid::kNumBodies; ++b) {
+      EXPECT_LT((sp.pos[b] - bodies.pos[b]).norm(), 1e-9) << humanoid::BodyNames()[b];
+      EXPECT_LT(sp.rot[b].angularDistance(bodies.rot[b]), 1e-9) << humanoid::BodyNames()[b];
     }
   }
 }
@@ -55,17 +55,17 @@ TEST(SkeletonTest, LimbIkReachesTargets) {
   const int trials = 100;
   for (int t = 0; t < trials; ++t) {
     DofVector ref = RandomDofs(s, rng);
-    ref[sim::Joints()[7].dof_offset] = rng.Uniform(0.2, 2.0);    // right knee bent
-    ref[sim::Joints()[10].dof_offset] = rng.Uniform(0.2, 2.0);   // left knee bent
-    ref[sim::Joints()[3].dof_offset] = rng.Uniform(-2.0, -0.2);  // right elbow bent
+    ref[humanoid::Joints()[7].dof_offset] = rng.Uniform(0.2, 2.0);    // right knee bent
+    ref[humanoid::Joints()[10].dof_offset] = rng.Uniform(0.2, 2.0);   // left knee bent
+    ref[humanoid::Joints()[3].dof_offset] = rng.Uniform(-2.0, -0.2);  // right elbow bent
     const Eigen::Vector3d root(0.1, -0.2, 0.8);
     const Eigen::Quaterniond rr(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
     SkeletonPose sp;
     SkeletonForwardKinematics(s, root, rr, ref, &sp);
     for (bool left : {false, true}) {
       DofVector d = DofVector::Zero();
-      const int shin = left ? sim::kLeftShin : sim::kRightShin;
-      const int foot = left ? sim::kLeftFoot : sim::kRightFoot;
+      const int shin = left ? humanoid::kLeftShin : humanoid::kRightShin;
+      const int foot = left ? humanoid::kLeftFoot : humanoid::kRightFoot;
       const Eigen::Vector3d knee_dir = sp.rot[shin] * Eigen::Vector3d::UnitX();
       const LimbIkResult r =
           SolveLegIk(s, left, root, rr, sp.pos[foot], sp.rot[foot], knee_dir, &d);
@@ -77,9 +77,9 @@ TEST(SkeletonTest, LimbIkReachesTargets) {
       }
     }
     DofVector d = DofVector::Zero();
-    const Eigen::Vector3d elbow_dir = sp.rot[sim::kRightUpperArm] * -Eigen::Vector3d::UnitX();
-    const LimbIkResult r = SolveArmIk(s, false, sp.pos[sim::kTorso], sp.rot[sim::kTorso],
-                                      sp.pos[sim::kRightHand], elbow_dir, &d);
+    const Eigen::Vector3d elbow_dir = sp.rot[humanoid::kRightUpperArm] * -Eigen::Vector3d::UnitX();
+    const LimbIkResult r = SolveArmIk(s, false, sp.pos[humanoid::kTorso], sp.rot[humanoid::kTorso],
+                                      sp.pos[humanoid::kRightHand], elbow_dir, &d);
     if (r.position_error < 1e-6) ++reached_arm;
   }
   EXPECT_GT(reached_leg, 2 * trials * 8 / 10);

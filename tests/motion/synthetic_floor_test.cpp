@@ -44,7 +44,7 @@ Posture PostureOf(const MotionFrame& f) {
   SkeletonPose sp;
   SkeletonForwardKinematics(skel, f.root_pos, f.root_rot, f.dof_pos, &sp);
   return {f.root_pos.z(), (f.root_rot * Eigen::Vector3d::UnitZ()).z(),
-          (sp.rot[sim::kTorso] * Eigen::Vector3d::UnitX()).z()};
+          (sp.rot[humanoid::kTorso] * Eigen::Vector3d::UnitX()).z()};
 }
 
 TEST(SyntheticFloorTest, FloorGetUpsComeFromBothStartsWithTheirLabels) {
@@ -128,7 +128,7 @@ TEST(SyntheticFloorTest, RestsOnTheFloorWithinTheJointLimits) {
     SCOPED_TRACE(name);
     const MotionClip& c = Named(name);
     for (int f = 0; f < c.num_frames(); ++f)
-      for (int i = 0; i < sim::kNumDofs; ++i) {
+      for (int i = 0; i < humanoid::kNumDofs; ++i) {
         ASSERT_GE(c.frame(f).dof_pos[i], skel.lower[i] - 1e-9) << "frame " << f << " dof " << i;
         ASSERT_LE(c.frame(f).dof_pos[i], skel.upper[i] + 1e-9) << "frame " << f << " dof " << i;
       }

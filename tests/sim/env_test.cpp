@@ -7,13 +7,13 @@
 #include <gtest/gtest.h>
 
 #include "common/test_util.h"
-#include "sims/sim/model_builder.h"
+#include "sims/humanoid/model_builder.h"
 
 namespace sims::sim {
 namespace {
 
-std::shared_ptr<const Humanoid> MakeHumanoid() {
-  static auto h = std::make_shared<const Humanoid>(BuildModel());
+std::shared_ptr<const humanoid::Humanoid> MakeHumanoid() {
+  static auto h = std::make_shared<const humanoid::Humanoid>(humanoid::BuildModel());
   return h;
 }
 
@@ -27,7 +27,7 @@ EnvConfig SmallConfig(int n, int threads) {
 }
 
 std::vector<float> RandomActions(Rng& rng, int n, double scale) {
-  std::vector<float> a(static_cast<size_t>(n) * kNumDofs);
+  std::vector<float> a(static_cast<size_t>(n) * humanoid::kNumDofs);
   for (auto& x : a) x = static_cast<float>(scale * rng.Normal());
   return a;
 }
@@ -86,20 +86,20 @@ TEST(EnvTest, ObservationsAreHeadingInvariant) {
   c.spawn_radius = 0;
   BatchedEnv env(MakeHumanoid(), c);
   Rng rng(3);
-  HumanoidPose p;
+  humanoid::HumanoidPose p;
   p.root_pos = {0.3, -0.2, 2.0};
   p.root_rot = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
                Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX());
   p.root_lin_vel = {0.5, 0.1, -0.1};
   p.root_ang_vel = {0.2, -0.3, 0.7};
-  for (int i = 0; i < kNumDofs; ++i)
+  for (int i = 0; i < humanoid::kNumDofs; ++i)
     p.dof_pos[i] = rng.Uniform(-0.1, 0.1), p.dof_vel[i] = rng.Normal();
   p.dof_pos[6] = -0.6;  // arms abducted and the body in the air: no contacts, whose pyramidal
   p.dof_pos[10] = 0.6;  // friction cones would break exact rotation invariance of the physics
   env.SetState(0, p);
   ASSERT_EQ(env.data(0)->ncon, 0);
   const Eigen::AngleAxisd rz(1.9, Eigen::Vector3d::UnitZ());
-  HumanoidPose q = p;
+  humanoid::HumanoidPose q = p;
   q.root_pos = rz * p.root_pos;
   q.root_rot = rz * p.root_rot;
   q.root_lin_vel = rz * p.root_lin_vel;
@@ -111,10 +111,11 @@ TEST(EnvTest, ObservationsAreHeadingInvariant) {
   for (int k = 0; k < env.amp_obs_dim(); ++k)
     EXPECT_NEAR(a[k], a[env.amp_obs_dim() + k], 1e-5) << k;
   // One step with identical actions keeps both worlds in lock-step up to round-off.
-  std::vector<float> act(2 * kNumDofs, 0.1f);
+  std::vector<float> act(2 * humanoid::kNumDofs, 0.1f);
   env.Step(act.data());
   ASSERT_EQ(env.data(0)->ncon, 0);
-  for (int k = 0; k < kAmpObsStepDim; ++k) EXPECT_NEAR(a[k], a[env.amp_obs_dim() + k], 1e-4) << k;
+  for (int k = 0; k < humanoid::kAmpObsStepDim; ++k)
+    EXPECT_NEAR(a[k], a[env.amp_obs_dim() + k], 1e-4) << k;
 }
 
 TEST(EnvTest, AmpHistoryShiftsOneStep) {
@@ -122,26 +123,28 @@ TEST(EnvTest, AmpHistoryShiftsOneStep) {
   Rng rng(1);
   auto act = RandomActions(rng, 1, 0.2);
   env.Step(act.data());
-  std::vector<float> prev(env.amp_observations(), env.amp_observations() + kAmpObsStepDim);
+  std::vector<float> prev(env.amp_observations(),
+                          env.amp_observations() + humanoid::kAmpObsStepDim);
   env.Step(act.data());
   const float* now = env.amp_observations();
-  for (int k = 0; k < kAmpObsStepDim; ++k) EXPECT_FLOAT_EQ(now[kAmpObsStepDim + k], prev[k]);
+  for (int k = 0; k < humanoid::kAmpObsStepDim; ++k)
+    EXPECT_FLOAT_EQ(now[humanoid::kAmpObsStepDim + k], prev[k]);
 }
 
 TEST(EnvTest, StandingPdHoldsAndFallResets) {
   EnvConfig c = SmallConfig(2, 1);
   BatchedEnv env(MakeHumanoid(), c);
   // Env 1 starts lying on the floor: its torso and head touch the ground.
-  HumanoidPose lying;
+  humanoid::HumanoidPose lying;
   lying.root_pos = {0, 0, 0.12};
   lying.root_rot = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
   env.SetState(1, lying);
-  std::vector<float> zero(2 * kNumDofs);
+  std::vector<float> zero(2 * humanoid::kNumDofs);
   // Zero actions are PD targets at the neutral pose except elbows/knees (mid-range); hold the
   // default pose exactly instead.
-  const double targets[kNumDofs] = {0};
+  const double targets[humanoid::kNumDofs] = {0};
   env.humanoid().TargetsToAction(targets, zero.data());
-  env.humanoid().TargetsToAction(targets, zero.data() + kNumDofs);
+  env.humanoid().TargetsToAction(targets, zero.data() + humanoid::kNumDofs);
   int fall_step = -1;
   for (int t = 0; t < 30; ++t) {
     env.Step(zero.data());
@@ -157,17 +160,17 @@ TEST(EnvTest, StandingPdHoldsAndFallResets) {
 // on lying there with falls ignored for recovery_steps, then falls (and recovers) again. The
 // draws come from the env's own stream, so the same seed gives the same episodes.
 TEST(EnvTest, RecoveryEpisodesKeepAFallenEnvGoing) {
-  HumanoidPose lying;
+  humanoid::HumanoidPose lying;
   lying.root_pos = {0, 0, 0.12};
   lying.root_rot = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
-  const double targets[kNumDofs] = {0};
+  const double targets[humanoid::kNumDofs] = {0};
   auto run = [&](double p, std::vector<int>* done_steps, std::vector<int>* recover_steps) {
     EnvConfig c = SmallConfig(1, 1);
     c.recovery_episode_prob = p;
     c.recovery_steps = 10;
     BatchedEnv env(MakeHumanoid(), c);
     env.SetState(0, lying);
-    std::vector<float> act(kNumDofs);
+    std::vector<float> act(humanoid::kNumDofs);
     env.humanoid().TargetsToAction(targets, act.data());
     int64_t recoveries = 0;
     for (int t = 0; t < 40; ++t) {
@@ -200,8 +203,8 @@ TEST(EnvTest, TimeoutTruncatesWithoutTermination) {
   EnvConfig c = SmallConfig(1, 1);
   c.episode_length = 5;
   BatchedEnv env(MakeHumanoid(), c);
-  std::vector<float> act(kNumDofs);
-  const double targets[kNumDofs] = {0};
+  std::vector<float> act(humanoid::kNumDofs);
+  const double targets[humanoid::kNumDofs] = {0};
   env.humanoid().TargetsToAction(targets, act.data());
   int dones = 0;
   for (int t = 0; t < 4; ++t) {
@@ -392,7 +395,7 @@ TEST(ObsAblationTest, ZeroesOnlyTheWithheldSegments) {
   segs[0] = {"goal", ObsSegment::Kind::kVector, 0, 3, 0, 0};
   segs[1] = {"heightmap", ObsSegment::Kind::kHeightmap, 3, 4, 2, 2};
   segs[2] = {"z", ObsSegment::Kind::kStyle, 7, 2, 0, 0};
-  const int dim = kSelfObsDim + 9;
+  const int dim = humanoid::kSelfObsDim + 9;
   std::vector<float> obs(2 * dim);
   for (size_t k = 0; k < obs.size(); ++k) obs[k] = 1.f + static_cast<float>(k);
   const auto run = [&](bool no_text, bool no_heightmap) {
@@ -409,7 +412,7 @@ TEST(ObsAblationTest, ZeroesOnlyTheWithheldSegments) {
       const auto o = run(text, hm);
       for (int i = 0; i < 2; ++i)
         for (int k = 0; k < dim; ++k) {
-          const int t = k - kSelfObsDim;  // index in the task observation
+          const int t = k - humanoid::kSelfObsDim;  // index in the task observation
           const bool zeroed = (hm && t >= 3 && t < 7) || (text && t >= 7);
           EXPECT_EQ(o[i * dim + k], zeroed ? 0.f : obs[i * dim + k]) << i << " " << k;
         }

@@ -15,13 +15,13 @@ namespace {
 using Eigen::Vector3d;
 using scene::TriangleMesh;
 
-bool BoxContains(const StaticGeom& g, const Vector3d& p) {
-  if (g.type != StaticGeom::Type::kBox) return false;
+bool BoxContains(const humanoid::StaticGeom& g, const Vector3d& p) {
+  if (g.type != humanoid::StaticGeom::Type::kBox) return false;
   const Vector3d q = g.X_WG.inverse() * p;
   return (q.cwiseAbs().array() <= g.half_size.array() + 1e-9).all();
 }
 
-bool AnyBoxContains(const std::vector<StaticGeom>& geoms, const Vector3d& p) {
+bool AnyBoxContains(const std::vector<humanoid::StaticGeom>& geoms, const Vector3d& p) {
   for (const auto& g : geoms)
     if (BoxContains(g, p)) return true;
   return false;
@@ -55,26 +55,26 @@ TEST(ScenePhysicsTest, BoxesConvexMeshesAndVoxelDecomposition) {
   TriangleMesh box = TriangleMesh::Box({0, 0, 0}, {1, 2, 0.5});
   auto g = CompileMeshGeometry(box, "b");
   ASSERT_EQ(g.size(), 1u);
-  EXPECT_EQ(g[0].type, StaticGeom::Type::kBox);
+  EXPECT_EQ(g[0].type, humanoid::StaticGeom::Type::kBox);
   EXPECT_TRUE(g[0].X_WG.translation().isApprox(Vector3d(0.5, 1, 0.25)));
   Eigen::Affine3d R(Eigen::AngleAxisd(0.5, Vector3d::UnitZ()));
   g = CompileMeshGeometry(box.Transformed(R), "r");
   ASSERT_EQ(g.size(), 1u);
-  ASSERT_EQ(g[0].type, StaticGeom::Type::kBox);
+  ASSERT_EQ(g[0].type, humanoid::StaticGeom::Type::kBox);
   EXPECT_NEAR(g[0].half_size.prod(), 0.5 * 1 * 0.25, 1e-9);
   EXPECT_TRUE(BoxContains(g[0], R * Vector3d(0.9, 1.9, 0.4)));
   EXPECT_FALSE(BoxContains(g[0], R * Vector3d(1.1, 1.0, 0.2)));
   // A cylinder is convex but not a box.
   g = CompileMeshGeometry(TriangleMesh::Cylinder({0, 0, 0}, 0.2, 0.5), "c");
   ASSERT_EQ(g.size(), 1u);
-  EXPECT_EQ(g[0].type, StaticGeom::Type::kConvexMesh);
+  EXPECT_EQ(g[0].type, humanoid::StaticGeom::Type::kConvexMesh);
   // A flat quad gets thickness below it.
   TriangleMesh quad;
   quad.vertices = {{0, 0, 0.3}, {1, 0, 0.3}, {1, 1, 0.3}, {0, 1, 0.3}};
   quad.triangles = {{0, 1, 2}, {0, 2, 3}};
   g = CompileMeshGeometry(quad, "q");
   ASSERT_EQ(g.size(), 1u);
-  ASSERT_EQ(g[0].type, StaticGeom::Type::kConvexMesh);
+  ASSERT_EQ(g[0].type, humanoid::StaticGeom::Type::kConvexMesh);
   double zmin = 1e9, zmax = -1e9;
   for (const auto& v : g[0].vertices) zmin = std::min(zmin, v.z()), zmax = std::max(zmax, v.z());
   EXPECT_NEAR(zmax, 0.3, 1e-12);
@@ -96,12 +96,12 @@ TEST(ScenePhysicsTest, BoxesConvexMeshesAndVoxelDecomposition) {
 TEST(ScenePhysicsTest, ChairPartsCompileToSeparateSolids) {
   scene::Scene s;
   s.AddObject(scene::MakeFurniture("chair", scene::DefaultFurnitureParams("chair")));
-  const StaticGeometry geometry = CompileSceneGeometry(s);
+  const humanoid::StaticGeometry geometry = CompileSceneGeometry(s);
   // Seat (1) + four legs (4) + back (1), all boxes.
   ASSERT_EQ(geometry.geoms.size(), 6u);
   int seat = 0;
   for (const auto& g : geometry.geoms) {
-    EXPECT_EQ(g.type, StaticGeom::Type::kBox);
+    EXPECT_EQ(g.type, humanoid::StaticGeom::Type::kBox);
     seat += g.name.find("/seat surface#0/") != std::string::npos;
   }
   EXPECT_EQ(seat, 1);
@@ -115,7 +115,7 @@ TEST(ScenePhysicsTest, ChairPartsCompileToSeparateSolids) {
 
 TEST(ScenePhysicsTest, HouseCompilesIntoAMujocoModel) {
   const scene::Scene house = scene::BuiltinHouse();
-  const StaticGeometry geometry = CompileSceneGeometry(house);
+  const humanoid::StaticGeometry geometry = CompileSceneGeometry(house);
   EXPECT_GT(geometry.geoms.size(), 100u);
   // Built-in furniture and walls are made of boxes and cylinders: no voxel decomposition, and
   // each wall box stays one box geom.
@@ -123,12 +123,12 @@ TEST(ScenePhysicsTest, HouseCompilesIntoAMujocoModel) {
   for (const auto& g : geometry.geoms) {
     if (g.name.rfind("walls/", 0) == 0) {
       ++wall_geoms;
-      EXPECT_EQ(g.type, StaticGeom::Type::kBox);
+      EXPECT_EQ(g.type, humanoid::StaticGeom::Type::kBox);
     }
   }
   EXPECT_EQ(wall_geoms, static_cast<int>(house.walls.triangles.size() / 12));
-  const MjModelPtr model = BuildModel(geometry);
-  const MjModelPtr bare = BuildModel({});
+  const humanoid::MjModelPtr model = humanoid::BuildModel(geometry);
+  const humanoid::MjModelPtr bare = humanoid::BuildModel({});
   const mjModel* m = model.get();
   EXPECT_EQ(m->ngeom, static_cast<int>(geometry.geoms.size()) + bare->ngeom);
   // One static body per object plus one for the walls, so the broad phase can skip far
@@ -136,7 +136,7 @@ TEST(ScenePhysicsTest, HouseCompilesIntoAMujocoModel) {
   int static_objects = 0;
   for (const auto& o : house.objects) static_objects += o.is_static ? 1 : 0;
   EXPECT_EQ(m->nbody, bare->nbody + static_objects + 1);
-  MjDataPtr data = MakeData(m);
+  humanoid::MjDataPtr data = humanoid::MakeData(m);
   mj_forward(m, data.get());
   const mjData* d = data.get();
   int meshes = 0;
@@ -147,7 +147,7 @@ TEST(ScenePhysicsTest, HouseCompilesIntoAMujocoModel) {
     EXPECT_NE(body, 0) << g.name;
     EXPECT_EQ(m->body_weldid[body], 0) << g.name << " must be static";
     const Eigen::Map<const Eigen::Vector3d> p_WG(d->geom_xpos + 3 * id);
-    if (g.type == StaticGeom::Type::kBox) {
+    if (g.type == humanoid::StaticGeom::Type::kBox) {
       EXPECT_LT((p_WG - g.X_WG.translation()).norm(), 1e-6) << g.name;
       continue;
     }
@@ -179,9 +179,9 @@ struct SitResult {
 
 SitResult DropSitting(const scene::Scene& s, double x, double y, double yaw, double seat_top,
                       const std::string& seat_geom_fragment) {
-  const StaticGeometry geometry = CompileSceneGeometry(s);
-  const MjModelPtr model = BuildModel(geometry);
-  MjDataPtr data = MakeData(model.get());
+  const humanoid::StaticGeometry geometry = CompileSceneGeometry(s);
+  const humanoid::MjModelPtr model = humanoid::BuildModel(geometry);
+  humanoid::MjDataPtr data = humanoid::MakeData(model.get());
   const mjModel* m = model.get();
   mjData* d = data.get();
   auto joint_qpos = [&](const char* name) {

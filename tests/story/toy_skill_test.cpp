@@ -11,9 +11,9 @@
 #include "sims/eval/policy_eval.h"
 #include "sims/fsm/policy_set.h"
 #include "sims/fsm/story_runner.h"
+#include "sims/humanoid/features.h"
 #include "sims/learning/train_run.h"
 #include "sims/scene/builtin.h"
-#include "sims/sim/features.h"
 #include "sims/task/skill.h"
 
 namespace sims::story {
@@ -32,7 +32,7 @@ class StandSkill : public task::Skill {
     return true;
   }
   sim::TaskStepResult Step(const sim::EnvView& view) override {
-    const double d = (view.pose->root_pos - goal(view.env_id, sim::kCjPelvis)).norm();
+    const double d = (view.pose->root_pos - goal(view.env_id, humanoid::kCjPelvis)).norm();
     sim::TaskStepResult r;
     r.reward = static_cast<float>(std::exp(-4.0 * d * d));
     r.success = d < 0.3;
@@ -43,7 +43,7 @@ class StandSkill : public task::Skill {
   void Aim(const sim::EnvView& view) {
     const Eigen::Vector3d& p = view.pose->root_pos;
     ClearGoals(view.env_id);
-    SetGoal(view.env_id, sim::kCjPelvis, {p.x(), p.y(), sim::kDefaultRootHeight});
+    SetGoal(view.env_id, humanoid::kCjPelvis, {p.x(), p.y(), humanoid::kDefaultRootHeight});
   }
 };
 
@@ -106,7 +106,7 @@ TEST(ToySkillTest, RegisteredSkillTrainsEvaluatesAndRunsInAStory) {
   std::vector<std::string> ran;
   runner.SetActionOverride([&](const std::string& skill, const float*, float* a) {
     if (ran.empty() || ran.back() != skill) ran.push_back(skill);
-    const double standing[sim::kNumDofs] = {0};
+    const double standing[humanoid::kNumDofs] = {0};
     runner.humanoid()->TargetsToAction(standing, a);
   });
   fsm::Instruction in;

@@ -32,9 +32,9 @@ TEST(BeginInstructionTest, SitTargetsTheNamedSeat) {
   t.object = 0;
   ASSERT_TRUE(f.setup.skill->BeginInstruction(f.View(), t));
   EXPECT_TRUE(f.env->pose(0).root_pos.isApprox(before)) << "no reset";
-  EXPECT_TRUE(f.setup.skill->goal_mask(0) & (1u << sim::kCjPelvis));
+  EXPECT_TRUE(f.setup.skill->goal_mask(0) & (1u << humanoid::kCjPelvis));
   const auto seat = f.setup.context.scene->objects[0].FindPart("seat surface")->mesh.Bounds();
-  const Eigen::Vector3d g = f.setup.skill->goal(0, sim::kCjPelvis);
+  const Eigen::Vector3d g = f.setup.skill->goal(0, humanoid::kCjPelvis);
   EXPECT_GE(g.z(), seat.max.z() - 0.05);
   EXPECT_LE((g.head<2>() - seat.center().head<2>()).norm(), seat.size().head<2>().norm());
   t.object = 99;
@@ -47,10 +47,10 @@ TEST(BeginInstructionTest, ReachUsesCaptionHandAndHeight) {
   ASSERT_NE(reach, nullptr);
   InstructionTarget t;
   t.object = 0;
-  t.hand = sim::kCjLeftHand;
+  t.hand = humanoid::kCjLeftHand;
   t.height = "high";
   ASSERT_TRUE(reach->BeginInstruction(f.View(), t));
-  EXPECT_EQ(reach->hand(0), sim::kCjLeftHand);
+  EXPECT_EQ(reach->hand(0), humanoid::kCjLeftHand);
   const double high = reach->target(0).z();
   t.height = "low";
   ASSERT_TRUE(reach->BeginInstruction(f.View(), t));

@@ -63,16 +63,16 @@ TEST(GetUpSkillTest, FallStartsHaveAGracePeriod) {
     EXPECT_EQ(getup->start_label(i), "fall");
     EXPECT_EQ(getup->phase(i), GetUpSkill::kFeetPhase);
     // Placed clear of the furniture: every body is over free floor.
-    for (int b = 0; b < sim::kNumBodies; ++b)
+    for (int b = 0; b < humanoid::kNumBodies; ++b)
       EXPECT_LT(s.setup.context.height_grid->Height(s.env->bodies(i).pos[b].x(),
                                                     s.env->bodies(i).pos[b].y()),
                 0.05);
     EXPECT_LT(s.env->pose(i).root_pos.z(), 0.5);
     // Stand point under the start; goals: pelvis at standing height plus both feet.
     EXPECT_NEAR((getup->stand_point(i) - s.env->pose(i).root_pos.head<2>()).norm(), 0, 1e-9);
-    EXPECT_EQ(getup->goal_mask(i),
-              (1u << sim::kCjPelvis) | (1u << sim::kCjLeftFoot) | (1u << sim::kCjRightFoot));
-    EXPECT_NEAR(getup->goal(i, sim::kCjPelvis).z(), sim::kDefaultRootHeight, 1e-12);
+    EXPECT_EQ(getup->goal_mask(i), (1u << humanoid::kCjPelvis) | (1u << humanoid::kCjLeftFoot) |
+                                       (1u << humanoid::kCjRightFoot));
+    EXPECT_NEAR(getup->goal(i, humanoid::kCjPelvis).z(), humanoid::kDefaultRootHeight, 1e-12);
   }
   // Lying on the floor does not end the episode during the grace period.
   std::vector<float> zero(3 * 28, 0.0f);
@@ -94,7 +94,7 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
     EXPECT_EQ(getup->start_label(i), getup->geometry(i).mattress >= 0 ? "bed" : "seat");
     const ObjectGeometry& g = getup->geometry(i);
     const int part = g.seat >= 0 ? g.seat : g.mattress;
-    const Eigen::Vector3d pelvis = s.env->bodies(i).pos[sim::kPelvis];
+    const Eigen::Vector3d pelvis = s.env->bodies(i).pos[humanoid::kPelvis];
     const double d =
         (scene::NearestPointOnPart(scene.objects[g.object].parts[part], pelvis) - pelvis).norm();
     EXPECT_LT(d, 0.3);
@@ -106,6 +106,39 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
   EXPECT_GE(on_furniture, 4);
 }
 
+// Held-out beds reach 0.62 m, past the bed clips (0.42–0.53 m) and their 5 cm: a lying start is
+// lifted onto a higher bed (getup_bed_raise), so every held-out bed gets bed starts.
+TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {"bed"};
+  c.object.held_out_objects = true;
+  c.object.num_objects = 6;
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
+  const auto bed_starts = [&](double raise) {
+    SkillConfig k = c;
+    k.getup.bed_raise = raise;
+    auto s = MakeSkillEnv(k, 12);
+    auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+    const auto& scene = *s.setup.context.scene;
+    int beds = 0;
+    for (int i = 0; i < 12; ++i) {
+      if (getup->start(i) != GetUpSkill::kBedStart) continue;
+      ++beds;
+      // Lying on this bed's mattress, not sunk into it.
+      const ObjectGeometry& g = getup->geometry(i);
+      const Eigen::Vector3d pelvis = s.env->bodies(i).pos[humanoid::kPelvis];
+      const Eigen::Vector3d on =
+          scene::NearestPointOnPart(scene.objects[g.object].parts[g.mattress], pelvis);
+      EXPECT_LT((on - pelvis).norm(), 0.3) << i;
+      EXPECT_GT(pelvis.z(), g.ToWorld(g.mattress_local.max).z() - 0.05) << i;
+    }
+    return beds;
+  };
+  EXPECT_EQ(bed_starts(0.15), 12);
+  EXPECT_LT(bed_starts(0.0), 12);  // without the lift the high beds fall back to fall states
+}
+
 // A share of reference starts lie on the floor at the start of a floor get-up clip (a clip
 // without furniture parameters), placed where every body is over free floor.
 TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
@@ -114,7 +147,7 @@ TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
   c.getup.floor_clip_share = 0.5;
   auto s = MakeSkillEnv(c, 8);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
-  std::vector<float> zero(8 * sim::kNumDofs, 0.0f);
+  std::vector<float> zero(8 * humanoid::kNumDofs, 0.0f);
   int floor = 0;
   for (int round = 0; round < 3; ++round) {
     for (int i = 0; i < 8; ++i) {
@@ -125,12 +158,12 @@ TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
       EXPECT_TRUE(getup->floor_start(i));
       EXPECT_TRUE(getup->reference_start(i));
       EXPECT_LT(s.env->pose(i).root_pos.z(), 0.4) << "lying";
-      for (int b = 0; b < sim::kNumBodies; ++b)
+      for (int b = 0; b < humanoid::kNumBodies; ++b)
         EXPECT_LT(s.setup.context.height_grid->Height(s.env->bodies(i).pos[b].x(),
                                                       s.env->bodies(i).pos[b].y()),
                   0.05);
       // The stand point is where it lies, not at the furniture.
-      EXPECT_LT((getup->stand_point(i) - s.env->bodies(i).pos[sim::kPelvis].head<2>()).norm(),
+      EXPECT_LT((getup->stand_point(i) - s.env->bodies(i).pos[humanoid::kPelvis].head<2>()).norm(),
                 1e-9);
       // Lying on the floor does not end the episode at once: the fall states' grace applies.
       for (int t = 0; t < 5; ++t) {
@@ -144,7 +177,8 @@ TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
 }
 
 TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
-  EXPECT_NEAR(GetUpSkill::RiseReward(sim::kDefaultRootHeight, 1.0, {0, 0}, {0, 0}), 1.0, 1e-12);
+  EXPECT_NEAR(GetUpSkill::RiseReward(humanoid::kDefaultRootHeight, 1.0, {0, 0}, {0, 0}), 1.0,
+              1e-12);
   EXPECT_NEAR(GetUpSkill::RiseReward(0.49, 0.5, {0, 0}, {0.5, 0}),
               0.6 * std::exp(-10 * 0.16) + 0.2 * 0.5 + 0.2 * std::exp(-0.5), 1e-9);
   EXPECT_NEAR(GetUpSkill::RiseReward(1.0, -1.0, {0, 0}, {0, 0}), 0.8, 1e-12);
@@ -169,7 +203,7 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
                                                  s.env->bodies(0).pos[0].head<2>()),
               1e-5);
   EXPECT_TRUE(r.truncate);
-  EXPECT_EQ(getup->goal_mask(0), 1u << sim::kCjPelvis);
+  EXPECT_EQ(getup->goal_mask(0), 1u << humanoid::kCjPelvis);
 }
 
 // Success is standing clear: upright with the head high, only the feet touching anything and
@@ -196,14 +230,14 @@ TEST(GetUpSkillTest, SuccessIsStandingUprightOnTheFloorAlone) {
   EXPECT_TRUE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
   EXPECT_FALSE(getup->StandingClear(ViewOf(*s.env, 0)));
   // Bent over (torso pitched 60° forward at the abdomen): pelvis upright, torso and head not.
-  sim::HumanoidPose bent = PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.87));
+  humanoid::HumanoidPose bent = PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.87));
   bent.dof_pos[1] = 1.05;  // abdomen_y
   s.env->SetState(0, bent);
   EXPECT_FALSE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
   // A higher head threshold than the standing head fails too.
   s.env->SetState(0, PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.87)));
   GetUpParams tall = c.getup;
-  tall.standing_head_height = s.env->bodies(0).pos[sim::kHead].z() + 0.01;
+  tall.standing_head_height = s.env->bodies(0).pos[humanoid::kHead].z() + 0.01;
   EXPECT_FALSE(GetUpSkill::Standing(s.env->bodies(0), tall));
 }
 

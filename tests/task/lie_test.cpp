@@ -33,7 +33,7 @@ TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
   ASSERT_NE(lie, nullptr);
   const auto& lib = *s.setup.context.motions;
   const auto& scene = *s.setup.context.scene;
-  sim::MjDataPtr scratch = sim::MakeData(s.setup.context.humanoid->model());
+  humanoid::MjDataPtr scratch = humanoid::MakeData(s.setup.context.humanoid->model());
   int checked = 0;
   for (const auto& g : lie->objects()) {
     ASSERT_FALSE(g.pillows.empty());
@@ -46,12 +46,13 @@ TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
         ASSERT_TRUE(ClipFurnitureFrame(c, g, 0.0, &p_clip, &yaw_clip, &dz));
         const auto place =
             ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
-        sim::BodyStates b;
-        sim::ForwardKinematics(*s.setup.context.humanoid,
-                               place.Apply(c.FramePose(c.num_frames() - 1)), scratch.get(), &b);
+        humanoid::BodyStates b;
+        humanoid::ForwardKinematics(*s.setup.context.humanoid,
+                                    place.Apply(c.FramePose(c.num_frames() - 1)), scratch.get(),
+                                    &b);
         const auto& bed = scene.objects[g.object];
-        const Eigen::Vector3d pelvis = sim::ContactJointPosition(b, sim::kCjPelvis);
-        const Eigen::Vector3d head = sim::ContactJointPosition(b, sim::kCjHead);
+        const Eigen::Vector3d pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
+        const Eigen::Vector3d head = humanoid::ContactJointPosition(b, humanoid::kCjHead);
         double head_d = 1e9;
         for (int p : g.pillows)
           head_d = std::min(head_d, (scene::NearestPointOnPart(bed.parts[p], head) - head).norm());
@@ -72,7 +73,7 @@ TEST(LieSkillTest, GoalsRewardAndThreshold) {
   auto s = MakeSkillEnv(c, 2);
   auto* lie = dynamic_cast<LieSkill*>(s.setup.skill.get());
   EXPECT_EQ(s.env->obs_dim(), 223 + 60 + kObjectObsDim + 256 + 64);
-  EXPECT_EQ(lie->goal_mask(0), (1u << sim::kCjPelvis) | (1u << sim::kCjHead));
+  EXPECT_EQ(lie->goal_mask(0), (1u << humanoid::kCjPelvis) | (1u << humanoid::kCjHead));
   // The pelvis target: the mattress centre, 0.11 m above its top (the lie clips' pelvis).
   const ObjectGeometry& g = lie->geometry(0);
   const Eigen::Vector3d target =
@@ -87,9 +88,10 @@ TEST(LieSkillTest, GoalsRewardAndThreshold) {
   s.env->SetState(0, PoseAt(target + Eigen::Vector3d(0, 0, 0.25)));
   const auto r = lie->Step(ViewOf(*s.env, 0));
   const auto& b = s.env->bodies(0);
-  const Eigen::Vector3d dp = lie->goal(0, sim::kCjPelvis) - sim::ContactJointPosition(b, 0);
+  const Eigen::Vector3d dp =
+      lie->goal(0, humanoid::kCjPelvis) - humanoid::ContactJointPosition(b, 0);
   const Eigen::Vector3d dh =
-      lie->goal(0, sim::kCjHead) - sim::ContactJointPosition(b, sim::kCjHead);
+      lie->goal(0, humanoid::kCjHead) - humanoid::ContactJointPosition(b, humanoid::kCjHead);
   EXPECT_NEAR(dp.norm(), 0.25, 1e-6);
   const double r_far = FarReward(lie->anchor(0), s.env->pose(0).root_pos.head<2>(),
                                  Eigen::Vector2d::Zero(), FacingOf(s.env->pose(0)), 1.0);

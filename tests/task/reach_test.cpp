@@ -59,7 +59,7 @@ TEST(ReachSkillTest, ReferenceInitFacesTheTarget) {
     EXPECT_LT(to_target.norm(), 3.0);  // at most an approach composite's walk-up away
     const ObjectGeometry& g = reach->geometry(i);
     // Facing the object's front (object −x).
-    const double heading = sim::HeadingAngle(s.env->pose(i).root_rot);
+    const double heading = humanoid::HeadingAngle(s.env->pose(i).root_rot);
     EXPECT_GT(std::cos(heading - (g.yaw + M_PI)), 0.9);
     EXPECT_GT(to_target.normalized().dot(Eigen::Vector2d(std::cos(heading), std::sin(heading))),
               0.5);
@@ -76,16 +76,17 @@ TEST(ReachSkillTest, RewardAndThreshold) {
   // Stand on the far anchor of a front target, facing the object.
   const int band = reach->candidates(reach->object(0), 1).empty() ? 0 : 1;
   const Eigen::Vector3d front = reach->candidates(reach->object(0), band).front();
-  reach->SetTarget(0, sim::kCjRightHand, front);
+  reach->SetTarget(0, humanoid::kCjRightHand, front);
   const Eigen::Vector3d a_O =
       g.X_WO.inverse() * Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0);
   EXPECT_NEAR(a_O.x(), g.local.max.x() + kStandDistance, 1e-9);
   EXPECT_NEAR(a_O.y(), (g.X_WO.inverse() * front).y(), 1e-9);
   s.env->SetState(
       0, PoseAt(Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0.89), g.yaw + M_PI));
-  const Eigen::Vector3d hand = sim::ContactJointPosition(s.env->bodies(0), sim::kCjRightHand);
+  const Eigen::Vector3d hand =
+      humanoid::ContactJointPosition(s.env->bodies(0), humanoid::kCjRightHand);
   for (double d : {0.15, 0.25}) {
-    reach->SetTarget(0, sim::kCjRightHand, hand + Eigen::Vector3d(0, 0, d));
+    reach->SetTarget(0, humanoid::kCjRightHand, hand + Eigen::Vector3d(0, 0, d));
     const auto r = reach->Step(ViewOf(*s.env, 0));
     EXPECT_EQ(r.success, d < 0.2);
     EXPECT_NEAR(reach->goal_error(0), d, 1e-9);

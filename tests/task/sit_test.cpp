@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "sims/humanoid/features.h"
 #include "sims/motion/mirror.h"
 #include "sims/scene/contact_targets.h"
-#include "sims/sim/features.h"
 #include "task/task_test_util.h"
 
 namespace sims::task {
@@ -78,7 +78,7 @@ TEST(SitSkillTest, TrainingGroundAndObservation) {
     const double d = (s.env->pose(i).root_pos.head<2>() - g.center).norm();
     EXPECT_GE(d, g.radius + c.object.spawn_min_distance - 1e-9);
     EXPECT_LE(d, g.radius + c.object.spawn_max_distance + 1e-9);
-    EXPECT_EQ(sit->goal_mask(i), 1u << sim::kCjPelvis);
+    EXPECT_EQ(sit->goal_mask(i), 1u << humanoid::kCjPelvis);
     // The pelvis goal is the fixed target: behind the seat's front edge (at most its centre),
     // the seated pelvis height above its top, at the episode's place along the seat.
     const Eigen::Vector3d t_O = g.X_WO.inverse() * sit->target(i);
@@ -86,15 +86,15 @@ TEST(SitSkillTest, TrainingGroundAndObservation) {
     EXPECT_NEAR(t_O.y(), g.seat_local.center().y() + sit->lateral(i), 1e-9);
     EXPECT_NEAR(t_O.z(), g.seat_local.max.z() + 0.085, 1e-9);
     EXPECT_LE(std::abs(sit->lateral(i)), 0.5 * (g.seat_local.max.y() - g.seat_local.min.y()));
-    EXPECT_NEAR((sit->goal(i, sim::kCjPelvis) - sit->target(i)).norm(), 0, 1e-12);
+    EXPECT_NEAR((sit->goal(i, humanoid::kCjPelvis) - sit->target(i)).norm(), 0, 1e-12);
     // The far anchor stands kStandDistance in front of the object.
     const Eigen::Vector3d a_O =
         g.X_WO.inverse() * Eigen::Vector3d(sit->anchor(i).x(), sit->anchor(i).y(), 0);
     EXPECT_NEAR(a_O.x(), g.local.max.x() + kStandDistance, 1e-9);
     // Observation: contact goal, then the task segment in the pelvis heading frame.
-    const sim::BodyStates& b = s.env->bodies(i);
-    const Eigen::Vector3d pelvis = b.pos[sim::kPelvis];
-    const Eigen::Quaterniond h_inv = sim::HeadingInverse(b.rot[sim::kPelvis]);
+    const humanoid::BodyStates& b = s.env->bodies(i);
+    const Eigen::Vector3d pelvis = b.pos[humanoid::kPelvis];
+    const Eigen::Quaterniond h_inv = humanoid::HeadingInverse(b.rot[humanoid::kPelvis]);
     const float* o = s.env->observations() + i * s.env->obs_dim() + 223;
     EXPECT_NEAR(Eigen::Vector3d(o[0], o[1], o[2]).norm(), (sit->target(i) - pelvis).norm(), 1e-4);
     EXPECT_EQ(o[3], 1.0f);
@@ -107,7 +107,7 @@ TEST(SitSkillTest, TrainingGroundAndObservation) {
     const Eigen::Vector3d c0 = h_inv * (g.ToWorld(g.local.min) - pelvis);
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(task[3 + k], c0[k], 1e-5);
     // Facing: the object's +x in the heading frame, a unit vector.
-    const double yaw_rel = g.yaw - sim::HeadingAngle(b.rot[sim::kPelvis]);
+    const double yaw_rel = g.yaw - humanoid::HeadingAngle(b.rot[humanoid::kPelvis]);
     EXPECT_NEAR(task[27], std::cos(yaw_rel), 1e-5);
     EXPECT_NEAR(task[28], std::sin(yaw_rel), 1e-5);
   }
@@ -120,7 +120,7 @@ TEST(SitSkillTest, SeatClipsLandOnTheTarget) {
   auto s = MakeSkillEnv(c, 1);
   auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
   const auto& lib = *s.setup.context.motions;
-  sim::MjDataPtr scratch = sim::MakeData(s.setup.context.humanoid->model());
+  humanoid::MjDataPtr scratch = humanoid::MakeData(s.setup.context.humanoid->model());
   int checked = 0;
   for (size_t k = 0; k < sit->objects().size(); ++k) {
     const ObjectGeometry& g = sit->objects()[k];
@@ -135,11 +135,11 @@ TEST(SitSkillTest, SeatClipsLandOnTheTarget) {
       const auto place =
           ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
       const auto& clipref = lib.clip(clip);
-      sim::BodyStates b;
-      sim::ForwardKinematics(*s.setup.context.humanoid,
-                             place.Apply(clipref.FramePose(clipref.num_frames() - 1)),
-                             scratch.get(), &b);
-      const Eigen::Vector3d pelvis = sim::ContactJointPosition(b, sim::kCjPelvis);
+      humanoid::BodyStates b;
+      humanoid::ForwardKinematics(*s.setup.context.humanoid,
+                                  place.Apply(clipref.FramePose(clipref.num_frames() - 1)),
+                                  scratch.get(), &b);
+      const Eigen::Vector3d pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
       EXPECT_LT((target - pelvis).norm(), 0.07) << clipref.meta().name;
       ++checked;
     }
@@ -286,7 +286,7 @@ TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
   for (double h : {0.15, 0.25}) {
     s.env->SetState(0, PoseAt(target + Eigen::Vector3d(0, 0, h), g.yaw));
     const sim::TaskStepResult r = sit->Step(ViewOf(*s.env, 0));
-    const Eigen::Vector3d pelvis = s.env->bodies(0).pos[sim::kPelvis];
+    const Eigen::Vector3d pelvis = s.env->bodies(0).pos[humanoid::kPelvis];
     EXPECT_NEAR((pelvis - target).norm(), h, 1e-6);
     EXPECT_LT((sit->anchor(0) - pelvis.head<2>()).squaredNorm(), kFarDistanceSq);
     EXPECT_NEAR(r.reward, 0.7 * std::exp(-10 * h * h) + 0.3, 1e-5);
@@ -299,7 +299,7 @@ TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
   s.env->SetState(0, PoseAt(front, g.yaw + M_PI));
   const sim::TaskStepResult r = sit->Step(ViewOf(*s.env, 0));
   EXPECT_NEAR((sit->target(0) - target).norm(), 0, 1e-12);
-  const Eigen::Vector3d pelvis = s.env->bodies(0).pos[sim::kPelvis];
+  const Eigen::Vector3d pelvis = s.env->bodies(0).pos[humanoid::kPelvis];
   const Eigen::Vector2d delta = sit->anchor(0) - pelvis.head<2>();
   const double facing =
       delta.normalized().dot(Eigen::Vector2d(std::cos(g.yaw + M_PI), std::sin(g.yaw + M_PI)));
@@ -311,7 +311,7 @@ TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
   const Eigen::Vector3d behind = g.ToWorld(Eigen::Vector3d(g.local.min.x() - 0.3, 0, 0.89));
   s.env->SetState(0, PoseAt(behind, g.yaw));
   sit->Step(ViewOf(*s.env, 0));
-  EXPECT_GT((sit->anchor(0) - s.env->bodies(0).pos[sim::kPelvis].head<2>()).squaredNorm(),
+  EXPECT_GT((sit->anchor(0) - s.env->bodies(0).pos[humanoid::kPelvis].head<2>()).squaredNorm(),
             kFarDistanceSq);
 }
 
@@ -334,7 +334,7 @@ TEST(SitSkillTest, SuccessHeldTruncatesAndForceTerminates) {
   // In the air no contact force acts; standing on the floor the feet carry the weight.
   s.env->SetState(0, PoseAt(Eigen::Vector3d(g.center.x() + 6, g.center.y(), 2.5)));
   EXPECT_NEAR(ObjectSkill::ContactForce(ViewOf(*s.env, 0)), 0.0, 1e-9);
-  sim::HumanoidPose stand = PoseAt(Eigen::Vector3d(g.center.x() + 6, g.center.y(), 0.89));
+  humanoid::HumanoidPose stand = PoseAt(Eigen::Vector3d(g.center.x() + 6, g.center.y(), 0.89));
   s.env->SetState(0, stand);
   std::vector<float> hold(28);
   s.setup.context.humanoid->TargetsToAction(stand.dof_pos.data(), hold.data());
@@ -388,14 +388,15 @@ TEST(SitSkillTest, SnapshotValuesAreChecked) {
   auto s = MakeSkillEnv(c, 1);
   auto& sit = dynamic_cast<SitSkill&>(*s.setup.skill);
   const std::vector<double> good = sit.SaveEnvState(0);
-  const size_t base = sim::kNumContactJoints * 3;  // goals, then mask, style, object, hold, ...
+  const size_t base =
+      humanoid::kNumContactJoints * 3;  // goals, then mask, style, object, hold, ...
   const auto rejects = [&](size_t at, double value) {
     std::vector<double> bad = good;
     bad.at(at) = value;
     EXPECT_THROW(sit.LoadEnvState(0, bad), Error) << "value " << value << " at " << at;
   };
   rejects(base, std::nan(""));                                   // mask
-  rejects(base, 1 << sim::kNumContactJoints);                    // mask: an unknown joint
+  rejects(base, 1 << humanoid::kNumContactJoints);               // mask: an unknown joint
   rejects(base + 1, s.setup.context.motions->num_clips());       // style: past the clips
   rejects(base + 1, 0.5);                                        // style: not an index
   rejects(base + 2, std::nan(""));                               // object

@@ -50,8 +50,8 @@ inline SkillEnv MakeSkillEnv(const SkillConfig& c, int n, uint64_t seed = 1) {
 }
 
 /// Default pose at xy with yaw, pelvis at height z, zero velocities.
-inline sim::HumanoidPose PoseAt(const Eigen::Vector3d& p, double yaw = 0) {
-  sim::HumanoidPose pose;
+inline humanoid::HumanoidPose PoseAt(const Eigen::Vector3d& p, double yaw = 0) {
+  humanoid::HumanoidPose pose;
   pose.root_pos = p;
   pose.root_rot = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
   return pose;

@@ -72,7 +72,7 @@ TEST(ContactPairRewardTest, ContactDirectionAndNotContact) {
 }
 
 TEST(UniHsiStepRewardTest, WalkingContactAndReach) {
-  std::array<JointPair, sim::kNumContactJoints> pairs;
+  std::array<JointPair, humanoid::kNumContactJoints> pairs;
   const Eigen::Vector3d root(0, 0, 0.89);
   // Walking: velocity and facing hold, only the position term is weak.
   StepReward s = UniHsiStepReward(pairs, root, {1, 0, 0}, {1, 0}, {3, 0, 0.89});
@@ -85,9 +85,9 @@ TEST(UniHsiStepRewardTest, WalkingContactAndReach) {
   const double rp2 = std::exp(-0.5 * 0.09);
   EXPECT_NEAR(s.reward, (1 - rp2) * rp2 / (3 - rp2 - 2 + 1e-4), 1e-12);
   // One pelvis contact: joints adaptively (14 others count 1), then with facing (1).
-  pairs[sim::kCjPelvis].type = ContactType::kContact;
-  pairs[sim::kCjPelvis].joint = {0, 0, 0.6};
-  pairs[sim::kCjPelvis].target = {0, 0, 0.5};
+  pairs[humanoid::kCjPelvis].type = ContactType::kContact;
+  pairs[humanoid::kCjPelvis].joint = {0, 0, 0.6};
+  pairs[humanoid::kCjPelvis].target = {0, 0, 0.5};
   const double rc = std::exp(-0.1);
   const double pair = (1 - rc) * rc / (1 - rc + 1e-4);
   const double near = (1 - pair) * pair / (15 - 14 - pair + 1e-4);
@@ -96,10 +96,10 @@ TEST(UniHsiStepRewardTest, WalkingContactAndReach) {
   EXPECT_NEAR(s.err2[0], 0.01, 1e-12);
   EXPECT_NEAR(s.reward, (1 - near) * near / (2 - near - 1 + 1e-4), 1e-12);
   // A lone hand contact: facing the target (+x from the root) is rewarded adaptively.
-  pairs[sim::kCjPelvis].type = ContactType::kNone;
-  pairs[sim::kCjRightHand].type = ContactType::kContact;
-  pairs[sim::kCjRightHand].joint = {0.5, 0, 1.2};
-  pairs[sim::kCjRightHand].target = {0.5, 0, 1.0};
+  pairs[humanoid::kCjPelvis].type = ContactType::kNone;
+  pairs[humanoid::kCjRightHand].type = ContactType::kContact;
+  pairs[humanoid::kCjRightHand].joint = {0.5, 0, 1.2};
+  pairs[humanoid::kCjRightHand].target = {0.5, 0, 1.0};
   const double rh = std::exp(-0.4);
   const double hand = (1 - rh) * rh / (1 - rh + 1e-4);
   const double near_h = (1 - hand) * hand / (1 - hand + 1e-4);
@@ -110,23 +110,23 @@ TEST(UniHsiStepRewardTest, WalkingContactAndReach) {
 }
 
 TEST(UniHsiStepRuleTest, TriggerAndAdvanceThresholds) {
-  std::array<ContactType, sim::kNumContactJoints> types;
+  std::array<ContactType, humanoid::kNumContactJoints> types;
   types.fill(ContactType::kNone);
-  types[sim::kCjPelvis] = ContactType::kContact;
-  types[sim::kCjTorso] = ContactType::kNotContact;
+  types[humanoid::kCjPelvis] = ContactType::kContact;
+  types[humanoid::kCjTorso] = ContactType::kNotContact;
   StepReward r;
-  r.err2[sim::kCjPelvis] = 0.05;
-  r.err2[sim::kCjTorso] = 0.2;
+  r.err2[humanoid::kCjPelvis] = 0.05;
+  r.err2[humanoid::kCjTorso] = 0.2;
   EXPECT_FALSE(CheckUniHsiStep(types, r, false, 10).triggered);  // still for only 10 steps
   StepCheck c = CheckUniHsiStep(types, r, false, 11);
   EXPECT_TRUE(c.triggered && c.advance);
   EXPECT_FALSE(CheckUniHsiStep(types, r, true, 11).triggered);  // excessive force
-  r.err2[sim::kCjPelvis] = 0.2;                                 // loose only: done, not passed
+  r.err2[humanoid::kCjPelvis] = 0.2;                            // loose only: done, not passed
   c = CheckUniHsiStep(types, r, false, 11);
   EXPECT_TRUE(c.triggered);
   EXPECT_FALSE(c.advance);
-  r.err2[sim::kCjPelvis] = 0.05;
-  r.err2[sim::kCjTorso] = 0.07;  // not contact needs ≥ 0.1 to trigger
+  r.err2[humanoid::kCjPelvis] = 0.05;
+  r.err2[humanoid::kCjTorso] = 0.07;  // not contact needs ≥ 0.1 to trigger
   EXPECT_FALSE(CheckUniHsiStep(types, r, false, 11).triggered);
   StepReward walk;
   walk.walking = true;
@@ -151,13 +151,13 @@ TEST(ContactPlanTest, ScenePlanFixtureBecomesSteps) {
   // Step 2: pelvis on seat_soft_surface2, contact, from above.
   const ContactStep& sit = plan.steps[1];
   ASSERT_EQ(sit.pairs.size(), 1u);
-  EXPECT_EQ(sit.mask(), 1u << sim::kCjPelvis);
+  EXPECT_EQ(sit.mask(), 1u << humanoid::kCjPelvis);
   EXPECT_EQ(sit.pairs[0].type, ContactType::kContact);
   EXPECT_EQ(sit.pairs[0].object, 0);
   EXPECT_EQ(s.objects[0].parts[sit.pairs[0].part].name, "seat soft surface");
   EXPECT_TRUE(sit.pairs[0].direction.isApprox(Eigen::Vector3d(0, 0, 1)));
-  EXPECT_EQ(sit.types()[sim::kCjPelvis], ContactType::kContact);
-  EXPECT_EQ(sit.types()[sim::kCjHead], ContactType::kNone);
+  EXPECT_EQ(sit.types()[humanoid::kCjPelvis], ContactType::kContact);
+  EXPECT_EQ(sit.types()[humanoid::kCjHead], ContactType::kNone);
   // The default plan is the first; a plan without steps is empty.
   EXPECT_EQ(LoadContactPlan(json, s).id, "0000");
   EXPECT_TRUE(LoadContactPlan(json, s, "0001").steps.empty());
@@ -168,19 +168,19 @@ TEST(ContactPlanTest, ResolveStepGivesGoalsTypesAndDirections) {
   const scene::Scene s =
       scene::LoadScenePlan(json, sims::testing::TestData("scene/partnet"), "0000");
   const ContactPlan plan = LoadContactPlan(json, s, "0000");
-  const sim::Humanoid h(sim::BuildModel());
-  sim::MjDataPtr d = sim::MakeData(h.model());
-  sim::BodyStates b;
-  sim::ForwardKinematics(h, PoseAt(Eigen::Vector3d(0.9, 2.0, 1.5)), d.get(), &b);
+  const humanoid::Humanoid h(humanoid::BuildModel());
+  humanoid::MjDataPtr d = humanoid::MakeData(h.model());
+  humanoid::BodyStates b;
+  humanoid::ForwardKinematics(h, PoseAt(Eigen::Vector3d(0.9, 2.0, 1.5)), d.get(), &b);
   const auto pairs = ResolveStep(plan.steps[1], s, b);
   const auto& seat = s.objects[0].parts[plan.steps[1].pairs[0].part];
-  for (int j = 0; j < sim::kNumContactJoints; ++j) {
-    if (j != sim::kCjPelvis) {
+  for (int j = 0; j < humanoid::kNumContactJoints; ++j) {
+    if (j != humanoid::kCjPelvis) {
       EXPECT_EQ(pairs[j].type, ContactType::kNone);
       continue;
     }
     EXPECT_EQ(pairs[j].type, ContactType::kContact);
-    EXPECT_TRUE(pairs[j].joint.isApprox(b.pos[sim::kPelvis]));
+    EXPECT_TRUE(pairs[j].joint.isApprox(b.pos[humanoid::kPelvis]));
     EXPECT_TRUE(pairs[j].target.isApprox(scene::NearestSamplePoint(seat, pairs[j].joint)));
     EXPECT_TRUE(pairs[j].direction.isApprox(Eigen::Vector3d(0, 0, 1)));
   }
@@ -241,14 +241,14 @@ TEST(UnifiedSkillTest, RandomChainsAndObservation) {
     const ContactStep& st = chain[0];
     const float* o = s.env->observations() + i * s.env->obs_dim() + 223;
     if (st.walking()) {
-      EXPECT_EQ(u->goal_mask(i), 1u << sim::kCjPelvis);
-      EXPECT_TRUE(u->goal(i, sim::kCjPelvis).isApprox(st.stand_point));
+      EXPECT_EQ(u->goal_mask(i), 1u << humanoid::kCjPelvis);
+      EXPECT_TRUE(u->goal(i, humanoid::kCjPelvis).isApprox(st.stand_point));
     } else {
       EXPECT_EQ(u->goal_mask(i), st.mask());
     }
     for (const auto& p : st.pairs) {
       EXPECT_EQ(o[base + p.joint], p.type == ContactType::kContact ? 1.0f : -1.0f);
-      const float* d = o + base + sim::kNumContactJoints + 3 * p.joint;
+      const float* d = o + base + humanoid::kNumContactJoints + 3 * p.joint;
       EXPECT_NEAR(Eigen::Vector3d(d[0], d[1], d[2]).norm(), p.direction.norm(), 1e-5);
     }
   }
@@ -276,7 +276,7 @@ TEST(UnifiedSkillTest, StepsAdvanceWithinTheEpisode) {
   ContactStep sit;
   sit.object = g.object;
   ContactPairSpec p;
-  p.joint = sim::kCjPelvis;
+  p.joint = humanoid::kCjPelvis;
   p.object = g.object;
   p.part = g.seat;
   p.direction = {0, 0, 1};
@@ -293,7 +293,7 @@ TEST(UnifiedSkillTest, StepsAdvanceWithinTheEpisode) {
   }
   EXPECT_EQ(u->step_index(0), 1);
   EXPECT_EQ(u->steps_completed(0), 1);
-  EXPECT_EQ(u->goal_mask(0), 1u << sim::kCjPelvis);  // now the seat
+  EXPECT_EQ(u->goal_mask(0), 1u << humanoid::kCjPelvis);  // now the seat
   // Sitting still above the seat passes the last step: success ends the episode.
   const Eigen::Vector3d mid = g.seat_local.center();
   s.env->SetState(0,
@@ -328,11 +328,11 @@ TEST(UnifiedSkillTest, BeginInstructionRunsOneContactStep) {
   EXPECT_EQ(u->step_index(0), 0);
   EXPECT_FALSE(u->steps(0)[0].walking());
   // The pelvis goal is on the seat (not the walking step's stand point), the hands have none.
-  const Eigen::Vector3d seat = u->goal(0, sim::kCjPelvis);
+  const Eigen::Vector3d seat = u->goal(0, humanoid::kCjPelvis);
   EXPECT_FALSE(seat.isApprox(plan.steps[0].stand_point));
   EXPECT_GT(seat.z(), 0.2);
-  EXPECT_TRUE(u->goal_mask(0) & (1u << sim::kCjPelvis));
-  EXPECT_FALSE(u->goal_mask(0) & (1u << sim::kCjLeftHand));
+  EXPECT_TRUE(u->goal_mask(0) & (1u << humanoid::kCjPelvis));
+  EXPECT_FALSE(u->goal_mask(0) & (1u << humanoid::kCjLeftHand));
   InstructionTarget missing = t;
   auto other = plan.steps[1];
   other.object = 7;  // not in the scene
@@ -356,7 +356,7 @@ TEST(UnifiedSkillTest, RunsAScenePlanAndRestoresSnapshots) {
   sim::BatchedEnv env(setup.context.humanoid, ec, setup.skill);
   for (int i = 0; i < 2; ++i) {
     EXPECT_EQ(u->steps(i).size(), 2u);
-    EXPECT_TRUE(u->goal(i, sim::kCjPelvis).isApprox(Eigen::Vector3d(2.5, 2, 0.86)));
+    EXPECT_TRUE(u->goal(i, humanoid::kCjPelvis).isApprox(Eigen::Vector3d(2.5, 2, 0.86)));
   }
   std::vector<float> act(2 * 28, 0.05f);
   for (int t = 0; t < 4; ++t) env.Step(act.data());

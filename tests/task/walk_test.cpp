@@ -69,7 +69,7 @@ TEST_F(WalkEnvTest, ObservationLayoutAndGoals) {
   auto* walk = dynamic_cast<WalkSkill*>(setup_.skill.get());
   ASSERT_NE(walk, nullptr);
   for (int i = 0; i < 4; ++i) {
-    EXPECT_EQ(walk->goal_mask(i), 1u << sim::kCjPelvis);
+    EXPECT_EQ(walk->goal_mask(i), 1u << humanoid::kCjPelvis);
     const double d = (walk->target(i) - env_->pose(i).root_pos.head<2>()).norm();
     EXPECT_GE(d, 3 - 1e-9);
     EXPECT_LE(d, 5 + 1e-9);
@@ -113,7 +113,7 @@ TEST(WalkStyleTest, StyleVectorReachesTheObservation) {
     const int at = s.env->obs_dim() - kStyleDim;
     const std::vector<sim::ObsSegment> segs = s.setup.skill->obs_segments();
     ASSERT_EQ(segs.back().name, "z");
-    ASSERT_EQ(segs.back().offset, at - sim::kSelfObsDim);
+    ASSERT_EQ(segs.back().offset, at - humanoid::kSelfObsDim);
     auto z_of = [&](int i) {
       return Eigen::Map<const Eigen::VectorXf>(s.env->observations() + i * s.env->obs_dim() + at,
                                                kStyleDim);
@@ -214,7 +214,7 @@ TEST(WalkStyleTest, PoseRewardFollowsTheStyleClipsMeanPosture) {
   for (int i = 0; i < 4; ++i) s.env->ResetEnv(i);
   for (int i = 0; i < 4; ++i) EXPECT_EQ(walk->average_pose(i), s.env->pose(i).dof_pos);
   const WalkSkill::JointAngles before = walk->average_pose(1);
-  std::vector<float> act(4 * sim::kNumDofs, 0.3f);
+  std::vector<float> act(4 * humanoid::kNumDofs, 0.3f);
   s.env->Step(act.data());
   const double a = s.env->control_dt() / 0.5;
   const WalkSkill::JointAngles expected = before + a * (s.env->pose(1).dof_pos - before);

@@ -9,14 +9,14 @@
 
 #include <Eigen/Core>
 
+#include "sims/humanoid/humanoid.h"
 #include "sims/io/motion_record.h"
 #include "sims/scene/voxels.h"
-#include "sims/sim/humanoid.h"
 
 namespace sims::eval {
 
 /// Points on the humanoid's collision geoms in each body's frame (axis and surface samples).
-std::vector<std::vector<Eigen::Vector3d>> BodySamplePoints(const sim::Humanoid& humanoid);
+std::vector<std::vector<Eigen::Vector3d>> BodySamplePoints(const humanoid::Humanoid& humanoid);
 
 /// Penetration of the recorded bodies into the scene over all frames.
 scene::PenetrationStats MotionPenetration(const io::MotionRecord& record,

@@ -16,7 +16,7 @@
 namespace sims::eval {
 
 /// Values per window in StyleFeatures().
-inline constexpr int kStyleFeatureDim = 9 + 2 * sim::kNumDofs;
+inline constexpr int kStyleFeatureDim = 9 + 2 * humanoid::kNumDofs;
 
 /// How windows are cut and the classifier is fitted.
 struct StyleClassifierOptions {

@@ -137,9 +137,9 @@ class StoryRunner {
   /// Installs an action override (empty function = use the policies again).
   void SetActionOverride(ActionOverride fn);
   /// The compiled physics geometry (reused for rendering).
-  const sim::StaticGeometry& geometry() const;
+  const humanoid::StaticGeometry& geometry() const;
   /// The humanoid model of the scene.
-  std::shared_ptr<const sim::Humanoid> humanoid() const;
+  std::shared_ptr<const humanoid::Humanoid> humanoid() const;
 
  private:
   friend std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>&, int,

@@ -29,9 +29,9 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "sims/humanoid/humanoid.h"
+#include "sims/humanoid/state.h"
 #include "sims/motion/motion_clip.h"
-#include "sims/sim/humanoid.h"
-#include "sims/sim/state.h"
 
 namespace sims::io {
 
@@ -42,12 +42,12 @@ inline constexpr int kMotionRecordVersion = 1;
 
 /// One recorded frame.
 struct RecordFrame {
-  double time = 0;                                               ///< Seconds since the start.
-  Eigen::Vector3d root_pos = {0, 0, sim::kDefaultRootHeight};    ///< p_WP (pelvis origin).
-  Eigen::Quaterniond root_rot = Eigen::Quaterniond::Identity();  ///< R_WP.
-  motion::DofVector dof_pos = motion::DofVector::Zero();         ///< Hinge angles (rad).
-  std::array<Eigen::Vector3d, sim::kNumBodies> body_pos;         ///< p_WB of the 15 bodies.
-  std::array<Eigen::Quaterniond, sim::kNumBodies> body_rot;      ///< R_WB of the 15 bodies.
+  double time = 0;                                                  ///< Seconds since the start.
+  Eigen::Vector3d root_pos = {0, 0, humanoid::kDefaultRootHeight};  ///< p_WP (pelvis origin).
+  Eigen::Quaterniond root_rot = Eigen::Quaterniond::Identity();     ///< R_WP.
+  motion::DofVector dof_pos = motion::DofVector::Zero();            ///< Hinge angles (rad).
+  std::array<Eigen::Vector3d, humanoid::kNumBodies> body_pos;       ///< p_WB of the 15 bodies.
+  std::array<Eigen::Quaterniond, humanoid::kNumBodies> body_rot;    ///< R_WB of the 15 bodies.
 };
 
 /// What happened to one script keyframe.
@@ -90,13 +90,13 @@ struct MotionRecord {
   void Validate(const std::string& source = "motion record") const;
 };
 
-/// Appends frames from simulator poses (bodies through sim::ForwardKinematics) and tracks
+/// Appends frames from simulator poses (bodies through humanoid::ForwardKinematics) and tracks
 /// keyframe annotations. Not thread-safe; one builder per story run.
 class MotionRecordBuilder {
  public:
   /// `humanoid` supplies the kinematics (the default humanoid when null); frames are assumed
   /// to arrive at `fps`.
-  explicit MotionRecordBuilder(std::shared_ptr<const sim::Humanoid> humanoid = nullptr,
+  explicit MotionRecordBuilder(std::shared_ptr<const humanoid::Humanoid> humanoid = nullptr,
                                double fps = 30.0);
   ~MotionRecordBuilder();
   MotionRecordBuilder(const MotionRecordBuilder&) = delete;
@@ -107,7 +107,7 @@ class MotionRecordBuilder {
   /// Sets the scene reference.
   void SetScene(const SceneRef& scene);
   /// Appends a frame at time num_frames() / fps; returns its index.
-  int AddFrame(const sim::HumanoidPose& pose);
+  int AddFrame(const humanoid::HumanoidPose& pose);
   /// Opens keyframe `annotation` (its start_frame becomes the next frame's index); closes an
   /// open keyframe first with success = false.
   void BeginKeyframe(KeyframeAnnotation annotation);
@@ -127,7 +127,7 @@ class MotionRecordBuilder {
 
  private:
   struct Scratch;
-  std::shared_ptr<const sim::Humanoid> humanoid_;
+  std::shared_ptr<const humanoid::Humanoid> humanoid_;
   std::unique_ptr<Scratch> scratch_;
   MotionRecord record_;
   std::optional<KeyframeAnnotation> open_;
@@ -151,6 +151,6 @@ motion::MotionClip RecordToClip(const MotionRecord& record);
 /// A record from a clip resampled at `fps` (one keyframe covering the whole clip, labelled
 /// from the clip's metadata); handy for rendering library clips.
 MotionRecord RecordFromClip(const motion::MotionClip& clip, double fps = 30.0,
-                            std::shared_ptr<const sim::Humanoid> humanoid = nullptr);
+                            std::shared_ptr<const humanoid::Humanoid> humanoid = nullptr);
 
 }  // namespace sims::io

@@ -12,13 +12,13 @@
 #include <optional>
 #include <vector>
 
+#include "sims/humanoid/model_builder.h"
 #include "sims/io/gltf_export.h"
 #include "sims/io/motion_record.h"
 #include "sims/io/video.h"
 #include "sims/io/viewer.h"
 #include "sims/motion/retarget.h"
 #include "sims/scene/scene.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::io {
 
@@ -34,7 +34,7 @@ struct StoryOutputOptions {
   ViewerOptions viewer_options;            ///< Viewer file sources.
   motion::HumanoidBvhOptions bvh_options;  ///< BVH axes and units.
   /// The run's physics geometry, reused for the video instead of compiling the scene again.
-  const sim::StaticGeometry* geometry = nullptr;
+  const humanoid::StaticGeometry* geometry = nullptr;
 };
 
 /// What was written.

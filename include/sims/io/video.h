@@ -10,9 +10,9 @@
 #include <string>
 
 #include "sims/core/config.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/io/motion_record.h"
 #include "sims/scene/scene.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::io {
 
@@ -87,7 +87,7 @@ VideoStats RenderVideo(const MotionRecord& record, const scene::Scene& scene,
                        const std::filesystem::path& mp4, const VideoOptions& options = {});
 
 /// Same with already compiled static geometry (e.g. the story run's physics scene).
-VideoStats RenderVideo(const MotionRecord& record, const sim::StaticGeometry& geometry,
+VideoStats RenderVideo(const MotionRecord& record, const humanoid::StaticGeometry& geometry,
                        const std::filesystem::path& mp4, const VideoOptions& options = {});
 
 }  // namespace sims::io

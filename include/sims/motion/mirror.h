@@ -20,7 +20,7 @@ double MirrorDofSign(int i);
 MotionFrame MirrorFrame(const MotionFrame& f);
 
 /// The mirrored pose (velocities included).
-sim::HumanoidPose MirrorPose(const sim::HumanoidPose& p);
+humanoid::HumanoidPose MirrorPose(const humanoid::HumanoidPose& p);
 
 /// Swaps left/right words (left ↔ right, leftward ↔ rightward, clockwise ↔ counterclockwise),
 /// keeping capitalisation.

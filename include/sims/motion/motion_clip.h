@@ -1,7 +1,7 @@
 // A humanoid motion clip in the project's own format: per-frame root position, root rotation
 // and the 28 hinge angles, a frame rate and labels (captions, skill, emotion, furniture).
 // Stored as `<name>.json` (metadata) + `<name>.bin` (float32 frames). Sampling at any time
-// gives a sim::HumanoidPose with world-frame velocities, so clips feed the environment's
+// gives a humanoid::HumanoidPose with world-frame velocities, so clips feed the environment's
 // reference-state init and the AMP demo buffer directly.
 #pragma once
 
@@ -15,13 +15,13 @@
 #include <Eigen/Geometry>
 
 #include "sims/core/config.h"
+#include "sims/humanoid/state.h"
 #include "sims/motion/skeleton.h"
-#include "sims/sim/state.h"
 
 namespace sims::motion {
 
 /// Values per stored frame: root position (3), root quaternion w x y z (4), 28 hinge angles.
-inline constexpr int kFrameWidth = 3 + 4 + sim::kNumDofs;
+inline constexpr int kFrameWidth = 3 + 4 + humanoid::kNumDofs;
 
 /// The nine emotion labels (SIMS): neutral, happy, angry, hurried, tired, sad, stressed,
 /// drunk, relaxed.
@@ -67,9 +67,9 @@ struct MotionMeta {
 
 /// One stored frame.
 struct MotionFrame {
-  Eigen::Vector3d root_pos = {0, 0, sim::kDefaultRootHeight};    ///< p_WP.
-  Eigen::Quaterniond root_rot = Eigen::Quaterniond::Identity();  ///< R_WP.
-  DofVector dof_pos = DofVector::Zero();                         ///< Hinge angles (rad).
+  Eigen::Vector3d root_pos = {0, 0, humanoid::kDefaultRootHeight};  ///< p_WP.
+  Eigen::Quaterniond root_rot = Eigen::Quaterniond::Identity();     ///< R_WP.
+  DofVector dof_pos = DofVector::Zero();                            ///< Hinge angles (rad).
 };
 
 /// A motion clip with precomputed velocities (immutable frames, editable metadata).
@@ -96,10 +96,10 @@ class MotionClip {
   MotionMeta& mutable_meta() { return meta_; }
 
   /// State at frame i (stored velocities).
-  sim::HumanoidPose FramePose(int i) const;
+  humanoid::HumanoidPose FramePose(int i) const;
   /// State at time t (clamped to [0, duration]): lerp/slerp of positions and rotations,
   /// linear blend of the per-frame velocities.
-  sim::HumanoidPose SamplePose(double t) const;
+  humanoid::HumanoidPose SamplePose(double t) const;
   /// The clip resampled at `fps` over the same duration.
   MotionClip Resampled(double fps) const;
   /// Frames [begin, end) as a new clip.
@@ -136,7 +136,8 @@ std::vector<Eigen::Vector3d> GaussianSmooth(const std::vector<Eigen::Vector3d>& 
 /// Scalar GaussianSmooth (same kernel and edge handling).
 std::vector<double> GaussianSmooth(const std::vector<double>& values, double sigma);
 
-/// FK of every frame through MuJoCo (sim::ForwardKinematics): body states per frame.
-std::vector<sim::BodyStates> ClipBodyStates(const MotionClip& clip, const sim::Humanoid& humanoid);
+/// FK of every frame through MuJoCo (humanoid::ForwardKinematics): body states per frame.
+std::vector<humanoid::BodyStates> ClipBodyStates(const MotionClip& clip,
+                                                 const humanoid::Humanoid& humanoid);
 
 }  // namespace sims::motion

@@ -2,7 +2,7 @@
 // left–right mirroring (doubles the data), filters by skill/emotion, and the two samplers
 // the learner needs: reference-state initialisation (a pose plus its AMP history) and AMP
 // demo windows (10 × 125 values computed exactly like the environment's: the clip pose goes
-// through sim::ForwardKinematics and sim::ComputeAmpObservation).
+// through humanoid::ForwardKinematics and humanoid::ComputeAmpObservation).
 #pragma once
 
 #include <filesystem>
@@ -12,9 +12,8 @@
 
 #include "sims/core/config.h"
 #include "sims/core/rng.h"
+#include "sims/humanoid/features.h"
 #include "sims/motion/motion_clip.h"
-#include "sims/sim/features.h"
-#include "sims/sim/task_hook.h"
 
 namespace sims::motion {
 
@@ -84,10 +83,10 @@ struct MotionLibraryOptions {
 
 /// A sampled reference state.
 struct ReferenceState {
-  int clip = 0;            ///< Clip index.
-  double time = 0;         ///< Time in the clip (s).
-  sim::HumanoidPose pose;  ///< State at `time`.
-  std::vector<sim::HumanoidPose>
+  int clip = 0;                 ///< Clip index.
+  double time = 0;              ///< Time in the clip (s).
+  humanoid::HumanoidPose pose;  ///< State at `time`.
+  std::vector<humanoid::HumanoidPose>
       history;  ///< States at time − k·dt, k = 1..amp_steps−1 (clamped at 0).
 };
 
@@ -95,11 +94,11 @@ struct ReferenceState {
 class MotionLibrary {
  public:
   /// Builds from clips and weights (same length, weights > 0) after filtering and mirroring.
-  MotionLibrary(std::shared_ptr<const sim::Humanoid> humanoid, std::vector<MotionClip> clips,
+  MotionLibrary(std::shared_ptr<const humanoid::Humanoid> humanoid, std::vector<MotionClip> clips,
                 std::vector<double> weights, const MotionLibraryOptions& options = {});
   /// Loads the clips of a manifest (labels from the manifest override the clips').
   static MotionLibrary Load(const std::filesystem::path& manifest,
-                            std::shared_ptr<const sim::Humanoid> humanoid,
+                            std::shared_ptr<const humanoid::Humanoid> humanoid,
                             const MotionLibraryOptions& options = {});
 
   /// Number of clips (mirrors included).
@@ -113,9 +112,9 @@ class MotionLibrary {
   /// Settings.
   const MotionLibraryOptions& options() const { return options_; }
   /// The humanoid used for FK.
-  const sim::Humanoid& humanoid() const { return *humanoid_; }
+  const humanoid::Humanoid& humanoid() const { return *humanoid_; }
   /// Observation options matching the environment's.
-  sim::ObsOptions obs_options() const;
+  humanoid::ObsOptions obs_options() const;
 
   /// A clip index drawn by weight.
   int SampleClip(Rng& rng) const;
@@ -125,8 +124,6 @@ class MotionLibrary {
   ReferenceState StateAt(int clip, double time) const;
   /// Clip by weight, time uniform in [0, max_fraction · duration], and its history.
   ReferenceState SampleReferenceState(Rng& rng, double max_fraction = 1.0) const;
-  /// Fills an environment initial state (pose + AMP history, reference = true).
-  void SampleInitialState(Rng& rng, sim::InitialState* init, double max_fraction = 1.0) const;
 
   /// The 125-d AMP observation of clip `clip` at time t, via `scratch` (an mjData of the
   /// library's model).
@@ -146,7 +143,7 @@ class MotionLibrary {
   std::vector<int> Find(const std::string& skill, const std::string& emotion = "") const;
 
  private:
-  std::shared_ptr<const sim::Humanoid> humanoid_;
+  std::shared_ptr<const humanoid::Humanoid> humanoid_;
   MotionLibraryOptions options_;
   std::vector<MotionClip> clips_;
   std::vector<double> weights_;

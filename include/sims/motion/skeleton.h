@@ -1,7 +1,7 @@
 // The humanoid's kinematic tree read from the compiled MuJoCo model (body offsets, joint
 // limits, foot boxes) with a fast Eigen forward kinematics and analytic limb IK, used by the
 // retargeter, the BVH exporter and the synthetic clip generator. Tests check it against
-// sim::ForwardKinematics.
+// humanoid::ForwardKinematics.
 #pragma once
 
 #include <array>
@@ -10,40 +10,40 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "sims/sim/humanoid.h"
+#include "sims/humanoid/humanoid.h"
 
 namespace sims::motion {
 
-/// 28 hinge angles in sim::DofNames() order.
-using DofVector = Eigen::Matrix<double, sim::kNumDofs, 1>;
+/// 28 hinge angles in humanoid::DofNames() order.
+using DofVector = Eigen::Matrix<double, humanoid::kNumDofs, 1>;
 
 /// Kinematic description of the AMP humanoid.
 struct HumanoidSkeleton {
-  std::array<int, sim::kNumBodies> parent{};             ///< Parent body (−1 for the pelvis).
-  std::array<Eigen::Vector3d, sim::kNumBodies> offset;   ///< Body origin in the parent frame.
-  std::array<Eigen::Quaterniond, sim::kNumBodies> rest;  ///< Body frame in the parent frame.
-  std::array<int, sim::kNumBodies> joint{};              ///< Joint index moving the body, or −1.
-  DofVector lower = DofVector::Zero();                   ///< Joint lower limits (rad).
-  DofVector upper = DofVector::Zero();                   ///< Joint upper limits (rad).
+  std::array<int, humanoid::kNumBodies> parent{};            ///< Parent body (−1 for the pelvis).
+  std::array<Eigen::Vector3d, humanoid::kNumBodies> offset;  ///< Body origin in the parent frame.
+  std::array<Eigen::Quaterniond, humanoid::kNumBodies> rest;  ///< Body frame in the parent frame.
+  std::array<int, humanoid::kNumBodies> joint{};  ///< Joint index moving the body, or −1.
+  DofVector lower = DofVector::Zero();            ///< Joint lower limits (rad).
+  DofVector upper = DofVector::Zero();            ///< Joint upper limits (rad).
   std::array<Eigen::Vector3d, 2>
       foot_box_center;  ///< Foot box centre in the foot frame (right, left).
   std::array<Eigen::Vector3d, 2> foot_box_half;  ///< Foot box half extents (right, left).
 
   /// Reads the layout from a humanoid model.
-  static HumanoidSkeleton FromHumanoid(const sim::Humanoid& humanoid);
+  static HumanoidSkeleton FromHumanoid(const humanoid::Humanoid& humanoid);
   /// The skeleton of the default humanoid asset (built once, thread-safe).
   static const HumanoidSkeleton& Default();
   /// The default humanoid itself (shared, built once).
-  static std::shared_ptr<const sim::Humanoid> DefaultHumanoid();
+  static std::shared_ptr<const humanoid::Humanoid> DefaultHumanoid();
 
   /// Hip→knee length of a leg (m).
-  double thigh_length() const { return offset[sim::kRightShin].norm(); }
+  double thigh_length() const { return offset[humanoid::kRightShin].norm(); }
   /// Knee→ankle length (m).
-  double shin_length() const { return offset[sim::kRightFoot].norm(); }
+  double shin_length() const { return offset[humanoid::kRightFoot].norm(); }
   /// Shoulder→elbow length (m).
-  double upper_arm_length() const { return offset[sim::kRightLowerArm].norm(); }
+  double upper_arm_length() const { return offset[humanoid::kRightLowerArm].norm(); }
   /// Elbow→hand length (m).
-  double lower_arm_length() const { return offset[sim::kRightHand].norm(); }
+  double lower_arm_length() const { return offset[humanoid::kRightHand].norm(); }
   /// Ankle height above the sole when the foot is flat (m).
   double ankle_height() const { return foot_box_half[0].z() - foot_box_center[0].z(); }
   /// Pelvis height of the straight-legged zero pose with soles on the floor (m).
@@ -52,8 +52,8 @@ struct HumanoidSkeleton {
 
 /// World poses of the 15 bodies.
 struct SkeletonPose {
-  std::array<Eigen::Vector3d, sim::kNumBodies> pos;     ///< p_WB.
-  std::array<Eigen::Quaterniond, sim::kNumBodies> rot;  ///< R_WB.
+  std::array<Eigen::Vector3d, humanoid::kNumBodies> pos;     ///< p_WB.
+  std::array<Eigen::Quaterniond, humanoid::kNumBodies> rot;  ///< R_WB.
 };
 
 /// Local rotation of joint `j` from its hinge angles (Rx·Ry·Rz, or Ry for 1-DoF joints).

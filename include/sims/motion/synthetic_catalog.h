@@ -266,9 +266,12 @@ struct BedSection {
   std::vector<std::string> furniture = {"bed"};  ///< Default furniture labels.
   double height = 0.48;                          ///< Bed height (m) in the first variant.
   SyntheticRange variant_height = {0.42, 0.52};  ///< Bed height range of later variants.
-  double lie_hold = 1.5;                         ///< Seconds held lying after lying down.
-  SyntheticLabels lie_down;                      ///< Lie-down clip (skill lie).
-  SyntheticLabels getup;                         ///< Get-up clip (skill getup).
+  /// Further bed heights (m) with one lie-down and one get-up clip each (names end in _h<cm>),
+  /// so that reference starts find a clip near any bed's height, held-out beds included.
+  std::vector<double> extra_heights;
+  double lie_hold = 1.5;     ///< Seconds held lying after lying down.
+  SyntheticLabels lie_down;  ///< Lie-down clip (skill lie).
+  SyntheticLabels getup;     ///< Get-up clip (skill getup).
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -276,6 +279,7 @@ struct BedSection {
     a->Visit(SIMS_NVP(furniture));
     a->Visit(SIMS_NVP(height));
     a->Visit(SIMS_NVP(variant_height));
+    a->Visit(SIMS_NVP(extra_heights));
     a->Visit(SIMS_NVP(lie_hold));
     a->Visit(SIMS_NVP(lie_down));
     a->Visit(SIMS_NVP(getup));

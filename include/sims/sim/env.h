@@ -11,7 +11,7 @@
 
 #include "sims/core/config.h"
 #include "sims/core/rng.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 #include "sims/sim/task_hook.h"
 
 namespace sims::sim {
@@ -87,7 +87,7 @@ enum class EndReason : uint8_t {
 class BatchedEnv {
  public:
   /// `task` may be null (plain humanoid: zero reward, no task observation).
-  BatchedEnv(std::shared_ptr<const Humanoid> humanoid, const EnvConfig& config,
+  BatchedEnv(std::shared_ptr<const humanoid::Humanoid> humanoid, const EnvConfig& config,
              std::shared_ptr<TaskHook> task = nullptr);
   ~BatchedEnv();
   BatchedEnv(const BatchedEnv&) = delete;
@@ -106,9 +106,9 @@ class BatchedEnv {
   /// Observation width: 223 + task obs_dim().
   int obs_dim() const { return obs_dim_; }
   /// Action width (28).
-  int action_dim() const { return kNumDofs; }
+  int action_dim() const { return humanoid::kNumDofs; }
   /// AMP observation width: 125 × amp_history.
-  int amp_obs_dim() const { return kAmpObsStepDim * config_.amp_history; }
+  int amp_obs_dim() const { return humanoid::kAmpObsStepDim * config_.amp_history; }
   /// Seconds per control step.
   double control_dt() const;
 
@@ -137,20 +137,20 @@ class BatchedEnv {
   /// Episode-end counters.
   const EnvStats& stats() const { return stats_; }
   /// The shared humanoid.
-  const Humanoid& humanoid() const { return *humanoid_; }
+  const humanoid::Humanoid& humanoid() const { return *humanoid_; }
   /// Mutable MuJoCo data of one env (tests, tools, renderers).
   mjData* data(int env_id);
   /// Current generalised state of one env.
-  const HumanoidPose& pose(int env_id) const;
+  const humanoid::HumanoidPose& pose(int env_id) const;
   /// Current body states of one env.
-  const BodyStates& bodies(int env_id) const;
+  const humanoid::BodyStates& bodies(int env_id) const;
   /// Control steps since the env's last reset.
   int progress(int env_id) const;
   /// Recomputes one env's observation row after its task's goals changed (a skill switch or a
   /// new target mid-episode), so the next action sees them.
   void RefreshTaskObservation(int env_id);
   /// Overwrites an env's state (keeps its episode running) and refreshes its observations.
-  void SetState(int env_id, const HumanoidPose& pose);
+  void SetState(int env_id, const humanoid::HumanoidPose& pose);
   /// Serialises every env's simulation, RNG, history and task state (binary string).
   std::string SaveState() const;
   /// Restores SaveState() output and recomputes observations; throws sims::Error on mismatch
@@ -173,12 +173,12 @@ class BatchedEnv {
   bool Unstable(int i) const;
   bool Fallen(int i) const;
 
-  std::shared_ptr<const Humanoid> humanoid_;
+  std::shared_ptr<const humanoid::Humanoid> humanoid_;
   EnvConfig config_;
   std::shared_ptr<TaskHook> task_;
-  int obs_dim_ = kSelfObsDim;
+  int obs_dim_ = humanoid::kSelfObsDim;
   int threads_ = 1;
-  ObsOptions obs_options_;
+  humanoid::ObsOptions obs_options_;
   uint32_t contact_mask_ = 0;
   std::vector<std::unique_ptr<Slot>> slots_;
   std::vector<float> obs_, terminal_obs_, rewards_, amp_obs_;

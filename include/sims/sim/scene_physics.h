@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "sims/core/config.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/scene/scene.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::sim {
 
@@ -44,14 +44,14 @@ struct ScenePhysicsOptions {
 
 /// Static geoms of all objects (except skipped categories and non-static objects) and walls.
 /// Geom names are "<instance>/<part name>#<part id>/<k>" and "walls/<k>".
-StaticGeometry CompileSceneGeometry(const scene::Scene& scene,
-                                    const ScenePhysicsOptions& options = {});
+humanoid::StaticGeometry CompileSceneGeometry(const scene::Scene& scene,
+                                              const ScenePhysicsOptions& options = {});
 
 /// The geoms of one mesh piece set (exposed for tests and custom scenes): split into
 /// edge-connected pieces, then box / convex mesh / voxel boxes as above.
-std::vector<StaticGeom> CompileMeshGeometry(const scene::TriangleMesh& mesh,
-                                            const std::string& name_prefix,
-                                            const ScenePhysicsOptions& options = {});
+std::vector<humanoid::StaticGeom> CompileMeshGeometry(const scene::TriangleMesh& mesh,
+                                                      const std::string& name_prefix,
+                                                      const ScenePhysicsOptions& options = {});
 
 /// True when no vertex lies more than `tolerance` outside any triangle's plane (both sides
 /// are tried, so the winding does not matter).

@@ -9,27 +9,28 @@
 
 #include "sims/core/config.h"
 #include "sims/core/rng.h"
-#include "sims/sim/state.h"
+#include "sims/humanoid/state.h"
 
 namespace sims::sim {
 
 /// Read-only view of one environment after physics (or right after a reset).
 struct EnvView {
-  int env_id = 0;                      ///< Environment index.
-  const Humanoid* humanoid = nullptr;  ///< Shared humanoid layout/model.
-  const mjData* data = nullptr;        ///< This env's MuJoCo data (positions/velocities fresh).
-  const HumanoidPose* pose = nullptr;  ///< Generalised state.
-  const BodyStates* bodies = nullptr;  ///< World-frame body states.
-  int progress = 0;                    ///< Control steps since the reset.
-  double control_dt = 1.0 / 30.0;      ///< Seconds per control step.
+  int env_id = 0;                                ///< Environment index.
+  const humanoid::Humanoid* humanoid = nullptr;  ///< Shared humanoid layout/model.
+  const mjData* data = nullptr;  ///< This env's MuJoCo data (positions/velocities fresh).
+  const humanoid::HumanoidPose* pose = nullptr;  ///< Generalised state.
+  const humanoid::BodyStates* bodies = nullptr;  ///< World-frame body states.
+  int progress = 0;                              ///< Control steps since the reset.
+  double control_dt = 1.0 / 30.0;                ///< Seconds per control step.
 };
 
 /// The initial state of an episode; the env fills a default that the task may replace.
 struct InitialState {
-  HumanoidPose pose;                  ///< State to start from.
-  std::vector<HumanoidPose> history;  ///< Optional poses at t − k·dt, k = 1..9 (AMP history).
-  int termination_grace_steps = 0;    ///< Steps during which falls do not terminate (get-up).
-  bool reference = false;             ///< True when taken from a motion clip.
+  humanoid::HumanoidPose pose;  ///< State to start from.
+  std::vector<humanoid::HumanoidPose>
+      history;                      ///< Optional poses at t − k·dt, k = 1..9 (AMP history).
+  int termination_grace_steps = 0;  ///< Steps during which falls do not terminate (get-up).
+  bool reference = false;           ///< True when taken from a motion clip.
 };
 
 /// What a task reports after each control step of one env.

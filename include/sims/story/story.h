@@ -23,10 +23,10 @@
 #include "sims/fsm/instruction.h"
 #include "sims/fsm/policy_set.h"
 #include "sims/fsm/story_runner.h"
+#include "sims/humanoid/model_builder.h"
 #include "sims/io/motion_record.h"
 #include "sims/planner/plan.h"
 #include "sims/scene/scene.h"
-#include "sims/sim/model_builder.h"
 
 namespace sims::story {
 
@@ -76,8 +76,8 @@ struct StoryRun {
   fsm::StoryResult result;         ///< Per-keyframe outcomes and totals.
   io::MotionRecord record;         ///< The motion with keyframe annotations.
   /// The run's physics geometry, kept so a video reuses it instead of compiling the scene again.
-  std::shared_ptr<const sim::StaticGeometry> geometry;
-  std::shared_ptr<const sim::Humanoid> humanoid;  ///< The humanoid the motion is of.
+  std::shared_ptr<const humanoid::StaticGeometry> geometry;
+  std::shared_ptr<const humanoid::Humanoid> humanoid;  ///< The humanoid the motion is of.
 };
 
 /// Runs the prepared story with the FSM: one character from the runner's default start.

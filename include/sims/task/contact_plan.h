@@ -15,15 +15,15 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "sims/humanoid/state.h"
 #include "sims/scene/scene.h"
-#include "sims/sim/state.h"
 #include "sims/task/contact_reward.h"
 
 namespace sims::task {
 
 /// One contact pair of a step.
 struct ContactPairSpec {
-  int joint = 0;                                        ///< Contact joint (sim::ContactJoint).
+  int joint = 0;                                        ///< Contact joint (humanoid::ContactJoint).
   ContactType type = ContactType::kContact;             ///< Contact, not contact or none.
   int object = -1;                                      ///< Scene object index (−1: joint pair).
   int part = -1;                                        ///< Part index in that object.
@@ -43,15 +43,15 @@ struct ContactStep {
   /// Bitmask of joints with a pair of type contact or not contact.
   uint32_t mask() const;
   /// Per-joint pair types (kNone where the joint has no pair).
-  std::array<ContactType, sim::kNumContactJoints> types() const;
+  std::array<ContactType, humanoid::kNumContactJoints> types() const;
 };
 
 /// The step's per-joint goals for body states `b` (what the unified skill observes and rewards):
 /// for each pair its type, the joint's position, its target — the part's surface sample nearest
 /// to the joint (UniHSI), or the other joint — and the direction; kNone elsewhere.
-std::array<JointPair, sim::kNumContactJoints> ResolveStep(const ContactStep& step,
-                                                          const scene::Scene& scene,
-                                                          const sim::BodyStates& b);
+std::array<JointPair, humanoid::kNumContactJoints> ResolveStep(const ContactStep& step,
+                                                               const scene::Scene& scene,
+                                                               const humanoid::BodyStates& b);
 
 /// A resolved plan.
 struct ContactPlan {

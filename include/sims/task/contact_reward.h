@@ -23,7 +23,7 @@
 
 #include <Eigen/Core>
 
-#include "sims/sim/humanoid.h"
+#include "sims/humanoid/humanoid.h"
 
 namespace sims::task {
 
@@ -85,15 +85,16 @@ PairReward ContactPairReward(const JointPair& pair);
 
 /// The UniHSI reward of a whole step.
 struct StepReward {
-  double reward = 0.0;                                ///< Total task reward.
-  std::array<double, sim::kNumContactJoints> err2{};  ///< Per-joint success distance (0 if none).
+  double reward = 0.0;  ///< Total task reward.
+  std::array<double, humanoid::kNumContactJoints>
+      err2{};              ///< Per-joint success distance (0 if none).
   double walk_err2 = 0.0;  ///< |stand − root|² (3-d) of a walking step, 0 otherwise.
   bool walking = false;    ///< The step had no pairs.
 };
 
 /// UniHSI step reward: the adaptive contact-pair reward, or the walking-step reward toward
 /// `stand_point` (3-d, absolute z) when no joint has a pair. `root_velocity` is world-frame.
-StepReward UniHsiStepReward(const std::array<JointPair, sim::kNumContactJoints>& pairs,
+StepReward UniHsiStepReward(const std::array<JointPair, humanoid::kNumContactJoints>& pairs,
                             const Eigen::Vector3d& root, const Eigen::Vector3d& root_velocity,
                             const Eigen::Vector2d& facing, const Eigen::Vector3d& stand_point,
                             double target_speed = 1.0);
@@ -107,7 +108,7 @@ struct StepCheck {
 /// Done trigger: every pair holds loosely (contact err² < 0.3, not contact err² ≥ 0.1; walking
 /// |Δp|² < 0.1), no excessive force, and the character has been still for more than 10
 /// steps. Advance: contact err² < 0.1 and not contact err² ≥ 0.05 (walking: |Δp|² < 0.1).
-StepCheck CheckUniHsiStep(const std::array<ContactType, sim::kNumContactJoints>& types,
+StepCheck CheckUniHsiStep(const std::array<ContactType, humanoid::kNumContactJoints>& types,
                           const StepReward& reward, bool big_force, int still_steps);
 
 /// UniHSI's stillness test: the largest L1 norm of a body's linear velocity is below 0.6.

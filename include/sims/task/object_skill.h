@@ -80,7 +80,7 @@ struct ClipPlacement {
   static ClipPlacement Align(const Eigen::Vector2d& p_world, double yaw_world,
                              const Eigen::Vector2d& p_clip, double yaw_clip, double dz = 0);
   /// Applies the placement to a pose (position, rotation and velocities).
-  sim::HumanoidPose Apply(const sim::HumanoidPose& pose) const;
+  humanoid::HumanoidPose Apply(const humanoid::HumanoidPose& pose) const;
   /// Applies it to a clip-frame point.
   Eigen::Vector3d Apply(const Eigen::Vector3d& p) const;
 };
@@ -196,9 +196,11 @@ class ObjectSkill : public Skill {
   void PlaceReference(int env_id, int clip, double t, const ClipPlacement& placement,
                       sim::InitialState* init);
   /// Seat/bed clips of `skills` whose furniture fits object g, for reference init: returns
-  /// a clip index (−1 if none) and its placement (`lateral` m along a wide seat).
+  /// a clip index (−1 if none) and its placement (`lateral` m along a wide seat). The object may
+  /// be up to kMaxClipHeightMismatch lower and up to `max_raise` higher than the clip's.
   int ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g, double lateral,
-                          Rng& rng, ClipPlacement* placement) const;
+                          Rng& rng, ClipPlacement* placement,
+                          double max_raise = kMaxClipHeightMismatch) const;
   /// Reference init from `reference_clips_` placed on env i's furniture (sit, lie) at
   /// `lateral` m along the seat.
   bool FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::InitialState* init);
@@ -219,7 +221,7 @@ class ObjectSkill : public Skill {
 double SeatLateral(const ObjectGeometry& g, Rng& rng);
 
 /// Heading direction (unit, xy) of a pose.
-Eigen::Vector2d FacingOf(const sim::HumanoidPose& pose);
+Eigen::Vector2d FacingOf(const humanoid::HumanoidPose& pose);
 
 /// The part's surface point nearest to p (exact, over its triangles).
 Eigen::Vector3d NearestOnPart(const scene::Scene& scene, int object, int part,

@@ -35,7 +35,7 @@
 
 namespace sims::task {
 
-inline constexpr int kContactGoalDim = sim::kNumContactJoints * 4;  ///< 60.
+inline constexpr int kContactGoalDim = humanoid::kNumContactJoints * 4;  ///< 60.
 
 /// Which clips feed reference-state init and the AMP demo buffer.
 struct MotionDataConfig {
@@ -94,7 +94,7 @@ struct SkillConfig {
 
 /// Everything a skill instance shares with the environment.
 struct SkillContext {
-  std::shared_ptr<const sim::Humanoid> humanoid;              ///< Model incl. the scene.
+  std::shared_ptr<const humanoid::Humanoid> humanoid;         ///< Model incl. the scene.
   std::shared_ptr<const scene::Scene> scene;                  ///< The scene the env simulates.
   std::shared_ptr<const scene::SceneHeightGrid> height_grid;  ///< Precomputed heights.
   std::shared_ptr<const scene::RayCaster> ray_caster;         ///< Direct queries (free space).
@@ -108,7 +108,7 @@ struct ContactStep;
 /// The per-env data every skill has (the skill object itself is shared by all envs).
 struct SkillState {
   /// Contact goals (world frame) of the 15 contact joints; only those in `mask` are active.
-  std::array<Eigen::Vector3d, sim::kNumContactJoints> goals;
+  std::array<Eigen::Vector3d, humanoid::kNumContactJoints> goals;
   uint32_t mask = 0;  ///< Bit j: goal j is active.
   int style = -1;     ///< Library clip whose style z the policy sees (−1 = none).
   /// An explicit z (a caption's embedding) overriding `style`; empty = none. Set by the FSM
@@ -119,7 +119,7 @@ struct SkillState {
   /// Lists the snapshotted fields; `num_clips` bounds `style`.
   void Serialize(StateArchive* a, long long num_clips) {
     for (Eigen::Vector3d& g : goals) a->Reals("goal", &g);
-    a->Int("mask", &mask, 0, (1ll << sim::kNumContactJoints) - 1);
+    a->Int("mask", &mask, 0, (1ll << humanoid::kNumContactJoints) - 1);
     a->Int("style", &style, -1, num_clips - 1);
   }
 };

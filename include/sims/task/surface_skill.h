@@ -48,7 +48,7 @@ class SurfaceSkill : public ObjectSkill {
 
   /// Updates env i's goals for body states `b`; returns Σ‖g_j − x_j‖² and sets the distance
   /// the success test compares (the pelvis's, or the larger of both joints').
-  double UpdateGoals(int env_id, const sim::BodyStates& b, double* success_distance);
+  double UpdateGoals(int env_id, const humanoid::BodyStates& b, double* success_distance);
   /// Env i's lateral choice (m along the seat; lie: the side, ±1).
   double lateral(int env_id) const { return lateral_[env_id]; }
 

@@ -8,7 +8,7 @@
 
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 #include "sims/task/sit/sit.h"
 
 namespace sims::task {
@@ -39,37 +39,37 @@ std::shared_ptr<const std::vector<FallState>> CachedFallStates(int count) {
 
 std::vector<FallState> GenerateFallStates(int count, uint64_t seed) {
   SIMS_CHECK(count >= 1);
-  const sim::Humanoid h(sim::BuildModel());
+  const humanoid::Humanoid h(humanoid::BuildModel());
   const mjModel* m = h.model();
   std::vector<FallState> out(count);
   std::vector<uint8_t> ok(count, 0);
 #pragma omp parallel num_threads(ThreadCount())
   {
-    sim::MjDataPtr data = sim::MakeData(m);
+    humanoid::MjDataPtr data = humanoid::MakeData(m);
     mjData* d = data.get();
-    sim::BodyStates b;
+    humanoid::BodyStates b;
 #pragma omp for schedule(dynamic)
     for (int k = 0; k < count; ++k) {
       Rng rng(seed + static_cast<uint64_t>(k));
       for (int attempt = 0; attempt < 4 && !ok[k]; ++attempt) {
         mj_resetData(m, d);
-        sim::HumanoidPose p;
+        humanoid::HumanoidPose p;
         p.root_pos = Eigen::Vector3d(0, 0, kFallStartHeight);
         Eigen::Vector4d q(rng.Normal(), rng.Normal(), rng.Normal(), rng.Normal());
         q.normalize();
         p.root_rot = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-        sim::WritePose(h, p, d);
-        float action[sim::kNumDofs];
-        double targets[sim::kNumDofs];
+        humanoid::WritePose(h, p, d);
+        float action[humanoid::kNumDofs];
+        double targets[humanoid::kNumDofs];
         for (float& a : action) a = static_cast<float>(rng.Uniform(-0.5, 0.5));
         h.ActionToTargets(action, targets);
-        for (int j = 0; j < sim::kNumDofs; ++j) d->ctrl[h.actuator_id(j)] = targets[j];
+        for (int j = 0; j < humanoid::kNumDofs; ++j) d->ctrl[h.actuator_id(j)] = targets[j];
         for (int s = 0; s < kFallPhysicsSteps; ++s) mj_step(m, d);
-        sim::ReadPose(h, d, &p);
+        humanoid::ReadPose(h, d, &p);
         if (!(p.root_pos.allFinite() && p.dof_pos.allFinite() && p.dof_vel.allFinite())) continue;
-        sim::ReadBodyStates(h, d, &b);
+        humanoid::ReadBodyStates(h, d, &b);
         FallState& f = out[k];
-        for (int j = 0; j < sim::kNumBodies; ++j)
+        for (int j = 0; j < humanoid::kNumBodies; ++j)
           f.reach = std::max(f.reach, (b.pos[j] - p.root_pos).head<2>().norm());
         p.root_pos.x() = 0;
         p.root_pos.y() = 0;
@@ -92,6 +92,7 @@ void GetUpParams::Validate() const {
           "a share in [0, 1]");
   Require(standing_head_height > standing_pelvis_height && standing_pelvis_height > 0,
           "getup_standing_head_height", "heights with 0 < pelvis < head (m)");
+  Require(bed_raise >= 0 && bed_raise <= 0.5, "getup_bed_raise", "a height in [0, 0.5] m");
 }
 
 GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
@@ -112,17 +113,17 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
   }
   fall_states_ = CachedFallStates(config.getup.fall_states);
   // The feet goal's height: foot origins of the standing default pose.
-  sim::MjDataPtr scratch = sim::MakeData(context.humanoid->model());
-  sim::BodyStates b;
-  sim::ForwardKinematics(*context.humanoid, sim::HumanoidPose{}, scratch.get(), &b);
-  foot_height_ = 0.5 * (b.pos[sim::kLeftFoot].z() + b.pos[sim::kRightFoot].z());
+  humanoid::MjDataPtr scratch = humanoid::MakeData(context.humanoid->model());
+  humanoid::BodyStates b;
+  humanoid::ForwardKinematics(*context.humanoid, humanoid::HumanoidPose{}, scratch.get(), &b);
+  foot_height_ = 0.5 * (b.pos[humanoid::kLeftFoot].z() + b.pos[humanoid::kRightFoot].z());
   CollectObjects("seat or bed (a 'seat surface' or 'mattress' part)");
 }
 
 bool GetUpSkill::Accepts(const ObjectGeometry& g) const { return g.seat >= 0 || g.mattress >= 0; }
 
 uint32_t GetUpSkill::contact_body_mask() const {
-  using namespace sim;
+  using namespace humanoid;
   return (1u << kLeftFoot) | (1u << kRightFoot) | (1u << kLeftHand) | (1u << kRightHand) |
          (1u << kPelvis) | (1u << kLeftThigh) | (1u << kRightThigh);
 }
@@ -140,11 +141,11 @@ std::string GetUpSkill::start_label(int env_id) const {
   }
 }
 
-bool GetUpSkill::Standing(const sim::BodyStates& b, const GetUpParams& params) {
-  return b.pos[sim::kPelvis].z() >= params.standing_pelvis_height &&
-         b.pos[sim::kHead].z() >= params.standing_head_height &&
-         (b.rot[sim::kPelvis] * Eigen::Vector3d::UnitZ()).z() >= kUprightCos &&
-         (b.rot[sim::kTorso] * Eigen::Vector3d::UnitZ()).z() >= kUprightCos;
+bool GetUpSkill::Standing(const humanoid::BodyStates& b, const GetUpParams& params) {
+  return b.pos[humanoid::kPelvis].z() >= params.standing_pelvis_height &&
+         b.pos[humanoid::kHead].z() >= params.standing_head_height &&
+         (b.rot[humanoid::kPelvis] * Eigen::Vector3d::UnitZ()).z() >= kUprightCos &&
+         (b.rot[humanoid::kTorso] * Eigen::Vector3d::UnitZ()).z() >= kUprightCos;
 }
 
 bool GetUpSkill::StandingClear(const sim::EnvView& view) const {
@@ -155,7 +156,7 @@ bool GetUpSkill::StandingClear(const sim::EnvView& view) const {
     const int b2 = view.humanoid->geom_body(d->contact[c].geom2);
     if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
     const int b = b1 >= 0 ? b1 : b2;
-    if (b != sim::kLeftFoot && b != sim::kRightFoot) return false;
+    if (b != humanoid::kLeftFoot && b != humanoid::kRightFoot) return false;
     if (d->contact[c].pos[2] > kFloorContactHeight) return false;  // standing on furniture
   }
   return true;
@@ -163,7 +164,7 @@ bool GetUpSkill::StandingClear(const sim::EnvView& view) const {
 
 double GetUpSkill::RiseReward(double z, double up_z, const Eigen::Vector2d& stand,
                               const Eigen::Vector2d& pelvis_xy) {
-  const double dz = std::max(sim::kDefaultRootHeight - z, 0.0);
+  const double dz = std::max(humanoid::kDefaultRootHeight - z, 0.0);
   return 0.6 * std::exp(-10.0 * dz * dz) + 0.2 * std::max(up_z, 0.0) +
          0.2 * std::exp(-2.0 * (stand - pelvis_xy).squaredNorm());
 }
@@ -202,11 +203,13 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   }
   ClipPlacement placement;
   const double lateral = SeatLateral(geometry(i), rng);
-  const int clip = ChooseFurnitureClip(furniture_clips_, geometry(i), lateral, rng, &placement);
+  const bool bed = geometry(i).mattress >= 0;
+  const int clip = ChooseFurnitureClip(furniture_clips_, geometry(i), lateral, rng, &placement,
+                                       bed ? config_.getup.bed_raise : kMaxClipHeightMismatch);
   if (clip < 0) return false;
   const double t = rng.Uniform(0.0, 0.25 * context_.motions->clip(clip).duration());
   PlaceReference(i, clip, t, placement, init);
-  getup_[i].start = geometry(i).mattress >= 0 ? kBedStart : kSeatStart;
+  getup_[i].start = bed ? kBedStart : kSeatStart;
   return true;
 }
 
@@ -226,14 +229,16 @@ void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
   SetStyle(i, clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))]);
 }
 
-void GetUpSkill::SetGetUpGoals(int i, const sim::BodyStates& b, double* feet_sq, double* feet_max) {
+void GetUpSkill::SetGetUpGoals(int i, const humanoid::BodyStates& b, double* feet_sq,
+                               double* feet_max) {
   ClearGoals(i);
-  SetGoal(i, sim::kCjPelvis, {getup_[i].stand.x(), getup_[i].stand.y(), sim::kDefaultRootHeight});
+  SetGoal(i, humanoid::kCjPelvis,
+          {getup_[i].stand.x(), getup_[i].stand.y(), humanoid::kDefaultRootHeight});
   *feet_sq = 0;
   *feet_max = 0;
   if (getup_[i].phase != kFeetPhase) return;
-  for (int j : {sim::kCjLeftFoot, sim::kCjRightFoot}) {
-    const Eigen::Vector3d x = sim::ContactJointPosition(b, j);
+  for (int j : {humanoid::kCjLeftFoot, humanoid::kCjRightFoot}) {
+    const Eigen::Vector3d x = humanoid::ContactJointPosition(b, j);
     const Eigen::Vector3d g = FootTarget(getup_[i].stand, x);
     SetGoal(i, j, g);
     *feet_sq += (g - x).squaredNorm();
@@ -252,12 +257,12 @@ bool GetUpSkill::BeginInstruction(const sim::EnvView& view, const InstructionTar
     SetGetUpGoals(i, *view.bodies, &sq, &mx);
   }
   env_[i].error =
-      std::max(config_.getup.standing_pelvis_height - view.bodies->pos[sim::kPelvis].z(), 0.0);
+      std::max(config_.getup.standing_pelvis_height - view.bodies->pos[humanoid::kPelvis].z(), 0.0);
   return true;
 }
 
-void GetUpSkill::StartGetUp(int i, const sim::BodyStates& b) {
-  const Eigen::Vector2d pelvis = b.pos[sim::kPelvis].head<2>();
+void GetUpSkill::StartGetUp(int i, const humanoid::BodyStates& b) {
+  const Eigen::Vector2d pelvis = b.pos[humanoid::kPelvis].head<2>();
   getup_[i].stand = pelvis;
   const ObjectGeometry& g = geometry(i);
   if (!floor_start(i) && !g.stand_points.empty()) {
@@ -276,12 +281,12 @@ void GetUpSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
   StartGetUp(i, *view.bodies);
   env_[i].error =
-      std::max(config_.getup.standing_pelvis_height - view.bodies->pos[sim::kPelvis].z(), 0.0);
+      std::max(config_.getup.standing_pelvis_height - view.bodies->pos[humanoid::kPelvis].z(), 0.0);
 }
 
 sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
-  const sim::BodyStates& b = *view.bodies;
+  const humanoid::BodyStates& b = *view.bodies;
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
   const Eigen::Vector2d vel = view.pose->root_lin_vel.head<2>();
   const Eigen::Vector2d facing = FacingOf(*view.pose);
@@ -295,11 +300,12 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
       SetGetUpGoals(i, b, &sq, &mx);
     }
   } else {
-    const double up_z = (b.rot[sim::kPelvis] * Eigen::Vector3d::UnitZ()).z();
-    r = 0.5 + 0.5 * RiseReward(b.pos[sim::kPelvis].z(), up_z, getup_[i].stand,
-                               b.pos[sim::kPelvis].head<2>());
+    const double up_z = (b.rot[humanoid::kPelvis] * Eigen::Vector3d::UnitZ()).z();
+    r = 0.5 + 0.5 * RiseReward(b.pos[humanoid::kPelvis].z(), up_z, getup_[i].stand,
+                               b.pos[humanoid::kPelvis].head<2>());
   }
-  env_[i].error = std::max(config_.getup.standing_pelvis_height - b.pos[sim::kPelvis].z(), 0.0);
+  env_[i].error =
+      std::max(config_.getup.standing_pelvis_height - b.pos[humanoid::kPelvis].z(), 0.0);
   return Finish(view, r, StandingClear(view));
 }
 

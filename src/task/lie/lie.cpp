@@ -1,6 +1,6 @@
 #include "sims/task/lie/lie.h"
 
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::task {
 
@@ -25,7 +25,7 @@ SurfaceTask LieTask() {
     const double y = side > 0 ? g.local.max.y() + kStandDistance : g.local.min.y() - kStandDistance;
     return Eigen::Vector3d(g.mattress_local.center().x(), y, 0.0);
   };
-  t.extra_joint = sim::kCjHead;
+  t.extra_joint = humanoid::kCjHead;
   t.extra_parts = [](const ObjectGeometry& g, const SkillConfig&) { return g.pillows; };
   t.extra_in_success = true;  // lying means the head is on the pillow too
   return t;

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "sims/core/error.h"
-#include "sims/sim/features.h"
-#include "sims/sim/model_builder.h"
+#include "sims/humanoid/features.h"
+#include "sims/humanoid/model_builder.h"
 
 namespace sims::task {
 
@@ -25,7 +25,7 @@ ReachSkill::ReachSkill(const SkillConfig& config, const SkillContext& context)
   reference_clips_.clear();
   if (context.motions) reference_clips_ = context.motions->Find("reach");
   PrepareReferenceClips();
-  hand_.assign(context.num_envs, sim::kCjRightHand);
+  hand_.assign(context.num_envs, humanoid::kCjRightHand);
   CollectObjects("object with front surfaces between 0.25 and 1.95 m");
   for (const auto& g : objects_) candidates_.push_back(FrontPoints(g));
 }
@@ -58,19 +58,19 @@ double ReachSkill::ClipContactTime(int clip) const {
   if (!prm.count("target_x") || !prm.count("target_y") || !prm.count("target_z"))
     return c.duration();
   const Eigen::Vector3d goal(prm.at("target_x"), prm.at("target_y"), prm.at("target_z"));
-  const int hand = prm.at("target_y") > 0 ? sim::kCjLeftHand : sim::kCjRightHand;
+  const int hand = prm.at("target_y") > 0 ? humanoid::kCjLeftHand : humanoid::kCjRightHand;
   const double reach = kPreContactMargin * config_.object.contact_success_threshold;
-  sim::MjDataPtr scratch = sim::MakeData(context_.humanoid->model());
-  sim::BodyStates b;
+  humanoid::MjDataPtr scratch = humanoid::MakeData(context_.humanoid->model());
+  humanoid::BodyStates b;
   for (int f = 0; f < c.num_frames(); ++f) {
-    sim::ForwardKinematics(*context_.humanoid, c.FramePose(f), scratch.get(), &b);
-    if ((sim::ContactJointPosition(b, hand) - goal).norm() < reach) return f / c.fps();
+    humanoid::ForwardKinematics(*context_.humanoid, c.FramePose(f), scratch.get(), &b);
+    if ((humanoid::ContactJointPosition(b, hand) - goal).norm() < reach) return f / c.fps();
   }
   return c.duration();
 }
 
 void ReachSkill::SetTarget(int i, int hand_joint, const Eigen::Vector3d& target) {
-  SIMS_CHECK(hand_joint == sim::kCjLeftHand || hand_joint == sim::kCjRightHand);
+  SIMS_CHECK(hand_joint == humanoid::kCjLeftHand || hand_joint == humanoid::kCjRightHand);
   hand_[i] = hand_joint;
   // The far anchor: in front of the object's front face, level with the target.
   const ObjectGeometry& g = geometry(i);
@@ -110,13 +110,13 @@ void ReachSkill::SampleTask(int i, Rng& rng) {
     if (!bands[b].empty()) usable.push_back(b);
   const int b = usable[rng.UniformInt(static_cast<int64_t>(usable.size()))];
   const auto& pts = bands[b];
-  const int hand = rng.Bernoulli(0.5) ? sim::kCjLeftHand : sim::kCjRightHand;
+  const int hand = rng.Bernoulli(0.5) ? humanoid::kCjLeftHand : humanoid::kCjRightHand;
   SetTarget(i, hand, pts[rng.UniformInt(static_cast<int64_t>(pts.size()))]);
 }
 
 bool ReachSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   const auto* lib = context_.motions.get();
-  const bool left = hand_[i] == sim::kCjLeftHand;
+  const bool left = hand_[i] == humanoid::kCjLeftHand;
   std::vector<int> fitting;
   for (int c : reference_clips_) {
     const auto& prm = lib->clip(c).meta().params;
@@ -141,17 +141,18 @@ bool ReachSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
 
 void ReachSkill::OnReset(const sim::EnvView& view, Rng&) {
   const int i = view.env_id;
-  env_[i].error = (target(i) - sim::ContactJointPosition(*view.bodies, hand_[i])).norm();
+  env_[i].error = (target(i) - humanoid::ContactJointPosition(*view.bodies, hand_[i])).norm();
 }
 
 sim::TaskStepResult ReachSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
-  const double d2 = (target(i) - sim::ContactJointPosition(*view.bodies, hand_[i])).squaredNorm();
+  const double d2 =
+      (target(i) - humanoid::ContactJointPosition(*view.bodies, hand_[i])).squaredNorm();
   return ContactRewardStep(view, d2, std::sqrt(d2));
 }
 
 void ReachSkill::SerializeTaskState(int i, StateArchive* a) {
-  a->Int("hand", &hand_[i], 0, sim::kNumContactJoints - 1);
+  a->Int("hand", &hand_[i], 0, humanoid::kNumContactJoints - 1);
 }
 
 SkillInfo ReachSkillInfo() {

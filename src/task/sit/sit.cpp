@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::task {
 
@@ -28,7 +28,7 @@ SurfaceTask SitTask() {
     return Eigen::Vector3d(g.local.max.x() + kStandDistance, g.seat_local.center().y() + lateral,
                            0.0);
   };
-  t.extra_joint = sim::kCjTorso;
+  t.extra_joint = humanoid::kCjTorso;
   // The back rest, when the config asks for it and the seat has one.
   t.extra_parts = [](const ObjectGeometry& g, const SkillConfig& c) {
     return c.sit.back_contact && g.back >= 0 ? std::vector<int>{g.back} : std::vector<int>{};

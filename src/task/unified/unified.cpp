@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "sims/core/error.h"
+#include "sims/humanoid/features.h"
 #include "sims/scene/contact_targets.h"
-#include "sims/sim/features.h"
 
 namespace sims::task {
 
@@ -35,10 +35,10 @@ Eigen::Vector3d StandAt(const ObjectGeometry& g, int k) {
   if (g.stand_points.empty()) {
     const Eigen::Vector3d p =
         g.ToWorld(Eigen::Vector3d(g.local.max.x() + 0.45, g.local.center().y(), 0));
-    return {p.x(), p.y(), sim::kDefaultRootHeight};
+    return {p.x(), p.y(), humanoid::kDefaultRootHeight};
   }
   const Eigen::Vector3d& p = g.stand_points[k % g.stand_points.size()];
-  return {p.x(), p.y(), sim::kDefaultRootHeight};
+  return {p.x(), p.y(), humanoid::kDefaultRootHeight};
 }
 
 }  // namespace
@@ -73,13 +73,13 @@ void UnifiedSkill::Observe(const sim::EnvView& view, float* out) const {
   std::fill(o, o + kContactPairObsDim, 0.0f);
   const int i = view.env_id;
   if (unified_[i].steps.empty()) return;
-  const Eigen::Quaterniond h_inv = sim::HeadingInverse(view.bodies->rot[sim::kPelvis]);
+  const Eigen::Quaterniond h_inv = humanoid::HeadingInverse(view.bodies->rot[humanoid::kPelvis]);
   for (const auto& p : unified_[i].steps[unified_[i].step].pairs) {
     if (p.type == ContactType::kNone) continue;
     o[p.joint] = p.type == ContactType::kContact ? 1.0f : -1.0f;
     const Eigen::Vector3d d = h_inv * p.direction;
     for (int k = 0; k < 3; ++k)
-      o[sim::kNumContactJoints + 3 * p.joint + k] = static_cast<float>(d[k]);
+      o[humanoid::kNumContactJoints + 3 * p.joint + k] = static_cast<float>(d[k]);
   }
 }
 
@@ -98,7 +98,7 @@ std::vector<ContactStep> UnifiedSkill::Templates(int k) const {
     s.label = label;
     t.push_back(std::move(s));
   };
-  using namespace sim;
+  using namespace humanoid;
   if (g.seat >= 0) {
     const ContactPairSpec sit = PartPair(kCjPelvis, C, g.object, g.seat, up);
     add("sit", {sit});
@@ -170,22 +170,24 @@ void UnifiedSkill::SampleTask(int i, Rng& rng) {
   if (const int k = SlotOf(plan_.front().object); k >= 0) env_[i].object = k;
 }
 
-void UnifiedSkill::UpdateGoals(int i, const std::array<JointPair, sim::kNumContactJoints>& pairs) {
+void UnifiedSkill::UpdateGoals(int i,
+                               const std::array<JointPair, humanoid::kNumContactJoints>& pairs) {
   ClearGoals(i);
   const ContactStep& st = unified_[i].steps[unified_[i].step];
   if (st.walking()) {
-    SetGoal(i, sim::kCjPelvis, st.stand_point);
+    SetGoal(i, humanoid::kCjPelvis, st.stand_point);
     return;
   }
-  for (int j = 0; j < sim::kNumContactJoints; ++j)
+  for (int j = 0; j < humanoid::kNumContactJoints; ++j)
     if (pairs[j].type != ContactType::kNone) SetGoal(i, j, pairs[j].target);
 }
 
 namespace {
 double StepContactError(const ContactStep& st,
-                        const std::array<JointPair, sim::kNumContactJoints>& pairs,
-                        const sim::BodyStates& b) {
-  if (st.walking()) return (st.stand_point - sim::ContactJointPosition(b, sim::kCjPelvis)).norm();
+                        const std::array<JointPair, humanoid::kNumContactJoints>& pairs,
+                        const humanoid::BodyStates& b) {
+  if (st.walking())
+    return (st.stand_point - humanoid::ContactJointPosition(b, humanoid::kCjPelvis)).norm();
   double sum = 0;
   int n = 0;
   for (const auto& p : pairs) {
@@ -222,7 +224,7 @@ void UnifiedSkill::OnReset(const sim::EnvView& view, Rng&) {
 
 sim::TaskStepResult UnifiedSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
-  const sim::BodyStates& b = *view.bodies;
+  const humanoid::BodyStates& b = *view.bodies;
   const ContactStep& st = unified_[i].steps[unified_[i].step];
   auto pairs = ResolveStep(st, *context_.scene, b);
   const StepReward sr =
@@ -278,7 +280,7 @@ void UnifiedState::Serialize(StateArchive* a, const scene::Scene& scene) {
     a->Int("pairs", &pairs, 0, a->loading() ? static_cast<long long>(a->left() / 8) : kMaxInt);
     if (a->loading()) s.pairs.assign(static_cast<size_t>(pairs), ContactPairSpec{});
     for (ContactPairSpec& p : s.pairs) {
-      a->Int("joint", &p.joint, 0, sim::kNumContactJoints - 1);
+      a->Int("joint", &p.joint, 0, humanoid::kNumContactJoints - 1);
       int type = static_cast<int>(p.type);
       a->Int("type", &type, 0, 2);
       p.type = static_cast<ContactType>(type);
@@ -286,7 +288,7 @@ void UnifiedState::Serialize(StateArchive* a, const scene::Scene& scene) {
       const long long parts =
           p.object >= 0 ? static_cast<long long>(scene.objects[p.object].parts.size()) : 0;
       a->Int("part", &p.part, -1, parts - 1);
-      a->Int("target_joint", &p.target_joint, -1, sim::kNumContactJoints - 1);
+      a->Int("target_joint", &p.target_joint, -1, humanoid::kNumContactJoints - 1);
       a->Reals("direction", &p.direction);
     }
     if (a->loading()) s.label = s.walking() ? "walk" : "contact";

@@ -15,14 +15,14 @@
 #include <limits>
 
 #include "sims/core/error.h"
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 namespace sims::task {
 
 namespace {
 // The pelvis goal height handed to the contact-goal observation: standing height, so the
 // z part of the goal tells a crouching character to stand up while it walks.
-constexpr double kStandingPelvisHeight = sim::kDefaultRootHeight;
+constexpr double kStandingPelvisHeight = humanoid::kDefaultRootHeight;
 // Walk targets must be on free floor: the precomputed height there (and around it, for the
 // body's width) must be at floor level.
 constexpr double kFloorTolerance = 0.05;
@@ -74,7 +74,7 @@ void WalkSkill::SetTarget(int env_id, const Eigen::Vector2d& target_xy) {
   walk_[env_id].target = target_xy;
   walk_[env_id].hold = 0;
   ClearGoals(env_id);
-  SetGoal(env_id, sim::kCjPelvis, {target_xy.x(), target_xy.y(), kStandingPelvisHeight});
+  SetGoal(env_id, humanoid::kCjPelvis, {target_xy.x(), target_xy.y(), kStandingPelvisHeight});
 }
 
 void WalkSkill::OnReset(const sim::EnvView& view, Rng& rng) {
@@ -116,7 +116,7 @@ double WalkSkill::target_speed(int env_id) const {
 double WalkSkill::StylePoseReward(int env_id, const JointAngles& mean_pose) const {
   const int clip = style_id(env_id);
   if (clip < 0 || clip >= static_cast<int>(clip_mean_pose_.size())) return 1.0;
-  const double mse = (mean_pose - clip_mean_pose_[clip]).squaredNorm() / sim::kNumDofs;
+  const double mse = (mean_pose - clip_mean_pose_[clip]).squaredNorm() / humanoid::kNumDofs;
   return std::exp(-config_.walk.style_pose_scale * mse);
 }
 
@@ -148,7 +148,7 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
   const Eigen::Vector2d vel = view.pose->root_lin_vel.head<2>();
-  const double heading = sim::HeadingAngle(view.pose->root_rot);
+  const double heading = humanoid::HeadingAngle(view.pose->root_rot);
   const Eigen::Vector2d facing(std::cos(heading), std::sin(heading));
 
   sim::TaskStepResult r;

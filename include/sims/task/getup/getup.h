@@ -42,8 +42,8 @@ inline constexpr double kFloorContactHeight = 0.05;
 /// A precomputed fall state: the pose (root xy at the origin) and how far its bodies reach
 /// from the root horizontally, for placing it clear of furniture.
 struct FallState {
-  sim::HumanoidPose pose;  ///< State after the fall.
-  double reach = 0;        ///< Largest horizontal body-origin distance from the root (m).
+  humanoid::HumanoidPose pose;  ///< State after the fall.
+  double reach = 0;             ///< Largest horizontal body-origin distance from the root (m).
 };
 
 /// The per-env data of the get-up skill (after its ObjectState in a snapshot).
@@ -89,7 +89,7 @@ class GetUpSkill : public ObjectSkill {
   /// The precomputed fall states.
   const std::vector<FallState>& fall_states() const { return *fall_states_; }
   /// Standing upright (pelvis and head heights of `params`, pelvis and torso up axes).
-  static bool Standing(const sim::BodyStates& b, const GetUpParams& params);
+  static bool Standing(const humanoid::BodyStates& b, const GetUpParams& params);
   /// Standing, only the feet touching anything and every contact on the floor (the success).
   bool StandingClear(const sim::EnvView& view) const;
   /// The rise-phase reward term in [0, 1] (see the file comment).
@@ -105,8 +105,8 @@ class GetUpSkill : public ObjectSkill {
   void SerializeTaskState(int env_id, StateArchive* archive) override;
 
  private:
-  void StartGetUp(int env_id, const sim::BodyStates& b);
-  void SetGetUpGoals(int env_id, const sim::BodyStates& b, double* feet_sq, double* feet_max);
+  void StartGetUp(int env_id, const humanoid::BodyStates& b);
+  void SetGetUpGoals(int env_id, const humanoid::BodyStates& b, double* feet_sq, double* feet_max);
   // A free floor point for a body reaching `reach` m from its root, tried near env i's object
   // (the spawn ring); false when none of the draws was clear.
   bool ClearFloorPoint(int env_id, double reach, Rng& rng, Eigen::Vector2d* p) const;

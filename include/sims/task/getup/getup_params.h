@@ -19,6 +19,10 @@ struct GetUpParams {
   double standing_head_height = 1.2;
   /// ... and the pelvis at least this high (m; standing ≈ 0.89 m).
   double standing_pelvis_height = 0.8;
+  /// A bed may be up to this much higher than a bed get-up clip's bed (m) for a bed start: the
+  /// first quarter of such a clip lies on the mattress, so the clip is lifted with it. Lower beds
+  /// keep the 5 cm of every furniture clip (kMaxClipHeightMismatch).
+  double bed_raise = 0.15;
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -28,6 +32,7 @@ struct GetUpParams {
     a->Visit(MakeNameValue("getup_floor_clip_share", &floor_clip_share));
     a->Visit(MakeNameValue("getup_standing_head_height", &standing_head_height));
     a->Visit(MakeNameValue("getup_standing_pelvis_height", &standing_pelvis_height));
+    a->Visit(MakeNameValue("getup_bed_raise", &bed_raise));
   }
   /// Checks ranges.
   void Validate() const;

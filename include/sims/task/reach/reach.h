@@ -35,7 +35,7 @@ class ReachSkill : public ObjectSkill {
   /// target: the candidate of that band nearest the character.
   bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
 
-  /// Env i's reaching contact joint (sim::kCjLeftHand or sim::kCjRightHand).
+  /// Env i's reaching contact joint (humanoid::kCjLeftHand or humanoid::kCjRightHand).
   int hand(int env_id) const { return hand_[env_id]; }
   /// Sets env i's hand and target (FSM / eval; resets the success counter).
   void SetTarget(int env_id, int hand_joint, const Eigen::Vector3d& target);

@@ -25,7 +25,7 @@
 namespace sims::task {
 
 /// Values of the "contact_pairs" observation segment: 15 types + 15 × 3 directions.
-inline constexpr int kContactPairObsDim = sim::kNumContactJoints * 4;
+inline constexpr int kContactPairObsDim = humanoid::kNumContactJoints * 4;
 
 /// Categories the unified skill trains on by default.
 std::vector<std::string> UnifiedCategories();
@@ -78,7 +78,7 @@ class UnifiedSkill : public ObjectSkill {
   void SerializeTaskState(int env_id, StateArchive* archive) override;
 
  private:
-  void UpdateGoals(int env_id, const std::array<JointPair, sim::kNumContactJoints>& pairs);
+  void UpdateGoals(int env_id, const std::array<JointPair, humanoid::kNumContactJoints>& pairs);
   std::vector<ContactStep> Templates(int k) const;
 
   std::vector<ContactStep> plan_;

@@ -23,7 +23,7 @@ namespace sims::task {
 /// itself is the model (settings, clip postures) and is shared by all envs.
 struct WalkState {
   /// One angle per hinge (rad).
-  using JointAngles = Eigen::Matrix<double, sim::kNumDofs, 1>;
+  using JointAngles = Eigen::Matrix<double, humanoid::kNumDofs, 1>;
 
   Eigen::Vector2d target = Eigen::Vector2d::Zero();         ///< Pelvis target (world xy).
   Eigen::Vector2d prev_velocity = Eigen::Vector2d::Zero();  ///< Root velocity one step ago (xy).

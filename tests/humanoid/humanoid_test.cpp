@@ -1,14 +1,14 @@
-#include "sims/sim/humanoid.h"
+#include "sims/humanoid/humanoid.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "sims/core/error.h"
-#include "sims/sim/model_builder.h"
-#include "sims/sim/state.h"
+#include "sims/humanoid/model_builder.h"
+#include "sims/humanoid/state.h"
 
-namespace sims::sim {
+namespace sims::humanoid {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -150,4 +150,4 @@ TEST(ModelBuilderTest, BadModelsGiveClearErrors) {
 }
 
 }  // namespace
-}  // namespace sims::sim
+}  // namespace sims::humanoid

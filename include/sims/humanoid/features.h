@@ -6,9 +6,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "sims/sim/state.h"
+#include "sims/humanoid/state.h"
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 inline constexpr int kSelfObsDim = 223;     ///< 1 + 14·3 + 15·6 + 15·3 + 15·3.
 inline constexpr int kAmpObsStepDim = 125;  ///< 1 + 6 + 3 + 3 + 72 + 28 + 12.
@@ -42,4 +42,4 @@ void ComputeSelfObservation(const BodyStates& bodies, const ObsOptions& options,
 void ComputeAmpObservation(const HumanoidPose& pose, const BodyStates& bodies,
                            const ObsOptions& options, float* out);
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid

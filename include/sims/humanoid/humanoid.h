@@ -7,9 +7,9 @@
 
 #include <Eigen/Core>
 
-#include "sims/sim/model_builder.h"
+#include "sims/humanoid/model_builder.h"
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 inline constexpr int kNumBodies = 15;         ///< AMP bodies (pelvis first).
 inline constexpr int kNumJoints = 12;         ///< AMP joints (3-DoF or 1-DoF each).
@@ -144,4 +144,4 @@ class Humanoid {
   double total_mass_ = 0;
 };
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid

@@ -1,8 +1,8 @@
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 #include <cmath>
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 namespace {
 inline void Put3(const Eigen::Vector3d& v, float* out) {
@@ -83,4 +83,4 @@ void ComputeAmpObservation(const HumanoidPose& pose, const BodyStates& bodies,
   }
 }
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid

@@ -8,9 +8,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "sims/sim/humanoid.h"
+#include "sims/humanoid/humanoid.h"
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 /// Generalised state. Velocities are world-frame (MuJoCo stores the root angular velocity in
 /// the root's local frame; Read/WritePose convert).
@@ -51,4 +51,4 @@ void ForwardKinematics(const Humanoid& h, const HumanoidPose& pose, mjData* scra
 /// World position of a contact joint (UniHSI joint→body map with torso/head offsets).
 Eigen::Vector3d ContactJointPosition(const BodyStates& bodies, int contact_joint);
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid

@@ -1,10 +1,10 @@
-#include "sims/sim/features.h"
+#include "sims/humanoid/features.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-namespace sims::sim {
+namespace sims::humanoid {
 namespace {
 
 TEST(FeaturesTest, TanNormOfIdentity) {
@@ -50,4 +50,4 @@ TEST(FeaturesTest, ElbowRotatesAboutY) {
 }
 
 }  // namespace
-}  // namespace sims::sim
+}  // namespace sims::humanoid

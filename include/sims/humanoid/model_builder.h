@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 /// One static collision geom attached to the world body.
 struct StaticGeom {
@@ -70,4 +70,4 @@ MjModelPtr BuildModel(const StaticGeometry& geometry = {},
 /// New per-environment data for a model.
 MjDataPtr MakeData(const mjModel* model);
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid

@@ -1,11 +1,11 @@
-#include "sims/sim/humanoid.h"
+#include "sims/humanoid/humanoid.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "sims/core/error.h"
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 const std::array<const char*, kNumBodies>& BodyNames() {
   static const std::array<const char*, kNumBodies> names = {
@@ -159,4 +159,4 @@ void Humanoid::TargetsToAction(const double* targets, float* action) const {
     action[i] = static_cast<float>((targets[i] - pd_offset_[i]) / pd_scale_[i]);
 }
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid

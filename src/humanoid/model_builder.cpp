@@ -1,4 +1,4 @@
-#include "sims/sim/model_builder.h"
+#include "sims/humanoid/model_builder.h"
 
 #include <algorithm>
 #include <cstring>
@@ -11,7 +11,7 @@
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 namespace {
 
@@ -163,4 +163,4 @@ MjModelPtr BuildModel(const StaticGeometry& geometry, const std::filesystem::pat
 
 MjDataPtr MakeData(const mjModel* model) { return MjDataPtr(mj_makeData(model)); }
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid

@@ -1,6 +1,6 @@
-#include "sims/sim/state.h"
+#include "sims/humanoid/state.h"
 
-namespace sims::sim {
+namespace sims::humanoid {
 
 void ReadPose(const Humanoid& h, const mjData* d, HumanoidPose* pose) {
   const double* q = d->qpos + h.root_qpos_adr();
@@ -72,4 +72,4 @@ Eigen::Vector3d ContactJointPosition(const BodyStates& bodies, int contact_joint
   return bodies.pos[b] + bodies.rot[b] * ContactJointOffset(contact_joint);
 }
 
-}  // namespace sims::sim
+}  // namespace sims::humanoid
