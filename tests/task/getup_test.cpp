@@ -177,11 +177,24 @@ TEST(GetUpSkillTest, FloorClipStartsLieOnFreeFloor) {
 }
 
 TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
-  EXPECT_NEAR(GetUpSkill::RiseReward(humanoid::kDefaultRootHeight, 1.0, {0, 0}, {0, 0}), 1.0,
-              1e-12);
-  EXPECT_NEAR(GetUpSkill::RiseReward(0.49, 0.5, {0, 0}, {0.5, 0}),
-              0.6 * std::exp(-10 * 0.16) + 0.2 * 0.5 + 0.2 * std::exp(-0.5), 1e-9);
-  EXPECT_NEAR(GetUpSkill::RiseReward(1.0, -1.0, {0, 0}, {0, 0}), 0.8, 1e-12);
+  using Rise = GetUpSkill::RiseInputs;
+  const double head = 1.5;
+  // Standing at the stand point: the full term.
+  Rise up{humanoid::kDefaultRootHeight, 1.6, 1.0, 1.0, {0, 0}};
+  EXPECT_NEAR(GetUpSkill::RiseReward(up, {0, 0}, head), 1.0, 1e-12);
+  // Half up: each term by hand.
+  Rise half{0.49, 1.0, 0.5, 0.2, {0.5, 0}};
+  EXPECT_NEAR(GetUpSkill::RiseReward(half, {0, 0}, head),
+              0.3 * std::exp(-10 * 0.16) + 0.3 * std::exp(-4 * 0.25) + 0.1 * 0.5 + 0.15 * 0.2 +
+                  0.15 * std::exp(-0.5),
+              1e-9);
+  // Upside down at full height: the up terms pay nothing.
+  Rise flipped{1.0, 1.6, -1.0, -1.0, {0, 0}};
+  EXPECT_NEAR(GetUpSkill::RiseReward(flipped, {0, 0}, head), 0.75, 1e-12);
+  // The crouch the first campaign settled in (pelvis 0.68 m, torso folded, head at 0.66 m)
+  // earns well under half of standing.
+  Rise crouch{0.68, 0.66, 0.6, 0.2, {0, 0}};
+  EXPECT_LT(GetUpSkill::RiseReward(crouch, {0, 0}, head), 0.5);
 
   SkillConfig c = GetUpConfig();
   c.reference_init_prob = 0;
@@ -199,8 +212,8 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
   EXPECT_LE(r.reward, 0.5 + 1e-6);
   r = getup->Step(ViewOf(*s.env, 0));
   EXPECT_NEAR(r.reward,
-              0.5 + 0.5 * GetUpSkill::RiseReward(s.env->bodies(0).pos[0].z(), 1.0, stand,
-                                                 s.env->bodies(0).pos[0].head<2>()),
+              0.5 + 0.5 * GetUpSkill::RiseReward(GetUpSkill::RiseInputsOf(s.env->bodies(0)), stand,
+                                                 getup->default_head_height()),
               1e-5);
   EXPECT_TRUE(r.truncate);
   EXPECT_EQ(getup->goal_mask(0), 1u << humanoid::kCjPelvis);

@@ -117,6 +117,7 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
   humanoid::BodyStates b;
   humanoid::ForwardKinematics(*context.humanoid, humanoid::HumanoidPose{}, scratch.get(), &b);
   foot_height_ = 0.5 * (b.pos[humanoid::kLeftFoot].z() + b.pos[humanoid::kRightFoot].z());
+  head_height_ = b.pos[humanoid::kHead].z();
   CollectObjects("seat or bed (a 'seat surface' or 'mattress' part)");
 }
 
@@ -162,11 +163,23 @@ bool GetUpSkill::StandingClear(const sim::EnvView& view) const {
   return true;
 }
 
-double GetUpSkill::RiseReward(double z, double up_z, const Eigen::Vector2d& stand,
-                              const Eigen::Vector2d& pelvis_xy) {
-  const double dz = std::max(humanoid::kDefaultRootHeight - z, 0.0);
-  return 0.6 * std::exp(-10.0 * dz * dz) + 0.2 * std::max(up_z, 0.0) +
-         0.2 * std::exp(-2.0 * (stand - pelvis_xy).squaredNorm());
+GetUpSkill::RiseInputs GetUpSkill::RiseInputsOf(const humanoid::BodyStates& b) {
+  RiseInputs x;
+  x.pelvis_z = b.pos[humanoid::kPelvis].z();
+  x.head_z = b.pos[humanoid::kHead].z();
+  x.pelvis_up = (b.rot[humanoid::kPelvis] * Eigen::Vector3d::UnitZ()).z();
+  x.torso_up = (b.rot[humanoid::kTorso] * Eigen::Vector3d::UnitZ()).z();
+  x.pelvis_xy = b.pos[humanoid::kPelvis].head<2>();
+  return x;
+}
+
+double GetUpSkill::RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand,
+                              double head_height) {
+  const double dp = std::max(humanoid::kDefaultRootHeight - x.pelvis_z, 0.0);
+  const double dh = std::max(head_height - x.head_z, 0.0);
+  return 0.3 * std::exp(-10.0 * dp * dp) + 0.3 * std::exp(-4.0 * dh * dh) +
+         0.1 * std::max(x.pelvis_up, 0.0) + 0.15 * std::max(x.torso_up, 0.0) +
+         0.15 * std::exp(-2.0 * (stand - x.pelvis_xy).squaredNorm());
 }
 
 Eigen::Vector3d GetUpSkill::FootTarget(const Eigen::Vector2d& stand,
@@ -300,9 +313,7 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
       SetGetUpGoals(i, b, &sq, &mx);
     }
   } else {
-    const double up_z = (b.rot[humanoid::kPelvis] * Eigen::Vector3d::UnitZ()).z();
-    r = 0.5 + 0.5 * RiseReward(b.pos[humanoid::kPelvis].z(), up_z, getup_[i].stand,
-                               b.pos[humanoid::kPelvis].head<2>());
+    r = 0.5 + 0.5 * RiseReward(RiseInputsOf(b), getup_[i].stand, head_height_);
   }
   env_[i].error =
       std::max(config_.getup.standing_pelvis_height - b.pos[humanoid::kPelvis].z(), 0.0);
