@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "sims/core/error.h"
+#include "sims/core/markup.h"
 #include "sims/core/paths.h"
 
 namespace sims::humanoid {
@@ -26,29 +27,6 @@ std::string Rgba(const Eigen::Vector4f& c) {
   std::ostringstream s;
   s << c[0] << " " << c[1] << " " << c[2] << " " << c[3];
   return s.str();
-}
-
-std::string XmlEscape(const std::string& in) {
-  std::string out;
-  for (char c : in) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 void ReplaceMarker(std::string* xml, const std::string& marker, const std::string& text,
@@ -104,13 +82,14 @@ std::string ComposeModelXml(const std::string& humanoid_xml, const StaticGeometr
           for (const auto& v : g.vertices) box.extend(v);
       }
       p_WB = box.center();
-      geoms << "    <body name=\"" << XmlEscape(bodies[k]) << "\" pos=\"" << Vec(p_WB) << "\">\n";
+      geoms << "    <body name=\"" << EscapeMarkup(bodies[k]) << "\" pos=\"" << Vec(p_WB)
+            << "\">\n";
     }
     const std::string indent = bodies[k].empty() ? "    " : "      ";
     for (int i : members[k]) {
       const StaticGeom& g = geometry.geoms[i];
       const std::string name =
-          XmlEscape(g.name.empty() ? "scene_geom_" + std::to_string(i) : g.name);
+          EscapeMarkup(g.name.empty() ? "scene_geom_" + std::to_string(i) : g.name);
       const std::string common = " class=\"scene\" friction=\"" + std::to_string(g.friction) +
                                  " 0.05 0.05\" rgba=\"" + Rgba(g.rgba) + "\"";
       if (g.type == StaticGeom::Type::kBox) {

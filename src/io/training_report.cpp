@@ -7,6 +7,7 @@
 
 #include "sims/core/config.h"
 #include "sims/core/error.h"
+#include "sims/core/markup.h"
 
 namespace sims::io {
 
@@ -30,32 +31,6 @@ std::vector<std::string> SplitCsv(const std::string& line) {
   std::stringstream ss(line);
   for (std::string c; std::getline(ss, c, ',');) out.push_back(Trim(c));
   if (!line.empty() && line.back() == ',') out.push_back("");
-  return out;
-}
-
-std::string Escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
   return out;
 }
 
@@ -137,14 +112,15 @@ std::string Plot(const CsvTable& t, int x_col, const std::vector<int>& cols,
   std::ostringstream s;
   s << "<figure><svg xmlns='http://www.w3.org/2000/svg' width='" << w << "' height='" << h
     << "' viewBox='0 0 " << w << " " << h << "'>";
-  s << "<text x='" << left << "' y='16' class='title'>" << Escape(title) << "</text>";
+  s << "<text x='" << left << "' y='16' class='title'>" << EscapeMarkup(title) << "</text>";
   s << "<rect x='" << left << "' y='" << top << "' width='" << pw << "' height='" << ph
     << "' class='frame'/>";
   if (xmin > xmax) {
     s << "<text x='" << left + 10 << "' y='" << top + ph / 2 << "' class='tick'>no data yet</text>";
     // The series still exist (empty) so every column is accounted for.
     for (int c : cols)
-      s << "<polyline class='series' data-series='" << Escape(t.columns[c]) << "' points=''/>";
+      s << "<polyline class='series' data-series='" << EscapeMarkup(t.columns[c])
+        << "' points=''/>";
   } else {
     if (xmax == xmin) xmin -= 0.5, xmax += 0.5;
     if (ymax == ymin) {
@@ -167,7 +143,7 @@ std::string Plot(const CsvTable& t, int x_col, const std::vector<int>& cols,
         << "' class='tick' text-anchor='middle'>" << Num(v) << "</text>";
     }
     s << "<text x='" << left + pw << "' y='" << h - 4 << "' class='tick' text-anchor='end'>"
-      << Escape(t.columns[x_col]) << "</text>";
+      << EscapeMarkup(t.columns[x_col]) << "</text>";
     for (std::size_t k = 0; k < cols.size(); ++k) {
       const std::vector<double>& y = t.values[cols[k]];
       const char* color = kPalette[k % std::size(kPalette)];
@@ -175,9 +151,9 @@ std::string Plot(const CsvTable& t, int x_col, const std::vector<int>& cols,
       pts.precision(5);
       bool any = false;
       auto flush = [&]() {
-        s << "<polyline class='series' data-series='" << Escape(t.columns[cols[k]]) << "' stroke='"
-          << color << "' points='" << pts.str() << "'><title>" << Escape(t.columns[cols[k]])
-          << "</title></polyline>";
+        s << "<polyline class='series' data-series='" << EscapeMarkup(t.columns[cols[k]])
+          << "' stroke='" << color << "' points='" << pts.str() << "'><title>"
+          << EscapeMarkup(t.columns[cols[k]]) << "</title></polyline>";
         pts.str("");
         any = false;
       };
@@ -194,7 +170,7 @@ std::string Plot(const CsvTable& t, int x_col, const std::vector<int>& cols,
         const double lx = left + 150 * (k % 3), ly = 32 + 13 * (k / 3);
         s << "<line x1='" << lx << "' x2='" << lx + 14 << "' y1='" << ly - 4 << "' y2='" << ly - 4
           << "' stroke='" << color << "' stroke-width='2'/><text x='" << lx + 18 << "' y='" << ly
-          << "' class='legend'>" << Escape(t.columns[cols[k]]) << "</text>";
+          << "' class='legend'>" << EscapeMarkup(t.columns[cols[k]]) << "</text>";
       }
     }
   }
@@ -259,7 +235,7 @@ std::string TrainingReportHtml(const CsvTable& t, const std::string& title,
   int x_col = t.Find(options.x_column);
   if (x_col < 0) x_col = 0;
   std::ostringstream page;
-  page << "<!doctype html>\n<html><head><meta charset='utf-8'><title>" << Escape(title)
+  page << "<!doctype html>\n<html><head><meta charset='utf-8'><title>" << EscapeMarkup(title)
        << "</title>\n<style>body{font-family:sans-serif;margin:16px;color:#222}"
           "figure{display:inline-block;margin:6px}"
           "svg .frame{fill:#fbfbfb;stroke:#999}svg .grid{stroke:#e3e3e3}"
@@ -269,8 +245,9 @@ std::string TrainingReportHtml(const CsvTable& t, const std::string& title,
           "border-bottom:1px solid "
           "#ddd;text-align:right}th:first-child,td:first-child{text-align:left}"
           "</style></head><body>\n<h1>"
-       << Escape(title) << "</h1>\n<p>" << t.rows() << " rows of " << t.columns.size()
-       << " columns; x axis: " << Escape(t.columns.empty() ? "" : t.columns[x_col]) << ".</p>\n";
+       << EscapeMarkup(title) << "</h1>\n<p>" << t.rows() << " rows of " << t.columns.size()
+       << " columns; x axis: " << EscapeMarkup(t.columns.empty() ? "" : t.columns[x_col])
+       << ".</p>\n";
   if (t.columns.empty()) {
     page << "<p>Empty log.</p></body></html>\n";
     return page.str();
@@ -286,8 +263,8 @@ std::string TrainingReportHtml(const CsvTable& t, const std::string& title,
       lo = std::isfinite(lo) ? std::min(lo, v) : v;
       hi = std::isfinite(hi) ? std::max(hi, v) : v;
     }
-    page << "<tr><td>" << Escape(t.columns[c]) << "</td><td>" << Num(last) << "</td><td>" << Num(lo)
-         << "</td><td>" << Num(hi) << "</td></tr>\n";
+    page << "<tr><td>" << EscapeMarkup(t.columns[c]) << "</td><td>" << Num(last) << "</td><td>"
+         << Num(lo) << "</td><td>" << Num(hi) << "</td></tr>\n";
   }
   page << "</table>\n<h2>Learning curves</h2>\n<section id='groups'>\n";
   for (const ReportPlot& p : options.plots) {
