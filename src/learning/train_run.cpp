@@ -195,6 +195,7 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
       ThrowInputError("--skill", "skill", "the skill of the config ('" + config.skill.skill + "')",
                       "'" + *options.skill + "'");
     if (options.iterations) config.iterations = *options.iterations;
+    task::ResolveSkillParams(&config.skill);
     ValidateConfig(config, config_path.string());
   }
   if (options.comm) {

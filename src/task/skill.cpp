@@ -1,6 +1,7 @@
 #include "sims/task/skill.h"
 
 #include <cmath>
+#include <set>
 
 #include "sims/core/error.h"
 #include "sims/core/log.h"
@@ -26,6 +27,32 @@ void SkillConfig::Validate() const {
   walk.Validate();
   object.Validate();
   getup.Validate();
+  if (params.empty()) return;
+  const SkillInfo* info = nullptr;
+  for (const auto& s : GetSkills())
+    if (s.name() == skill) info = &s;
+  for (auto it = params.begin(); it != params.end(); ++it) {
+    if (info && info->params.contains(it.key())) continue;
+    std::set<std::string> keys;
+    const nlohmann::json named = ConfigToJson(SkillConfig{});  // items() does not own it
+    for (const auto& [key, value] : named.items()) keys.insert(key);
+    if (info)
+      for (const auto& [key, value] : info->params.items()) keys.insert(key);
+    std::string known;
+    for (const auto& key : keys) known += (known.empty() ? "" : ", ") + key;
+    throw FieldError(it.key(), "a known field (one of: " + known + ")", "an unknown field");
+  }
+  if (info->check_params) info->check_params(params);
+}
+
+void ResolveSkillParams(SkillConfig* config) {
+  const nlohmann::json named = ConfigToJson(SkillConfig{});
+  for (const auto& s : GetSkills()) {
+    if (s.name() != config->skill) continue;
+    for (auto it = s.params.begin(); it != s.params.end(); ++it)
+      if (!named.contains(it.key()) && !config->params.contains(it.key()))
+        config->params[it.key()] = it.value();
+  }
 }
 
 Skill::Skill(const SkillConfig& config, const SkillContext& context)

@@ -46,6 +46,30 @@ struct Outer {
   void Validate() const { Require(num_envs > 0, "num_envs", "a positive integer"); }
 };
 
+// A struct whose keys beyond its own belong to a plugin (SkillConfig::params).
+struct WithRest {
+  int num_envs = 8;
+  nlohmann::json rest = nlohmann::json::object();
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(num_envs));
+    a->VisitRest(&rest);
+  }
+};
+
+TEST(ConfigTest, VisitRestTakesTheUnnamedKeysAndWritesThemBack) {
+  const nlohmann::json j = {{"num_envs", 2}, {"hop_height", 0.3}, {"hop_style", "high"}};
+  const WithRest w = ConfigFromJson<WithRest>(j, "test");
+  EXPECT_EQ(w.num_envs, 2);
+  EXPECT_EQ(w.rest, (nlohmann::json{{"hop_height", 0.3}, {"hop_style", "high"}}));
+  EXPECT_EQ(ConfigToJson(w), j);
+  EXPECT_TRUE(ConfigFromJson<WithRest>(nlohmann::json::object(), "test").rest.empty());
+  // A named field wins over a rest key of the same name when writing.
+  WithRest clash;
+  clash.rest = {{"num_envs", 99}};
+  EXPECT_EQ(ConfigToJson(clash), (nlohmann::json{{"num_envs", 8}}));
+}
+
 TEST(ConfigTest, DefaultsSurviveEmptyObject) {
   const Outer o = ConfigFromJson<Outer>(nlohmann::json::object(), "test");
   EXPECT_EQ(o.num_envs, 8);

@@ -21,10 +21,25 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The toy skill's own settings: declared in its SkillInfo, so SkillConfig needs no member.
+struct StandParams {
+  double radius = 0.3;  // success distance (m)
+  double kernel = 4.0;  // reward exp(−kernel·d²)
+
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(MakeNameValue("toy_stand_radius", &radius));
+    a->Visit(MakeNameValue("toy_stand_kernel", &kernel));
+  }
+  void Validate() const { Require(radius > 0, "toy_stand_radius", "a positive distance (m)"); }
+};
+
 // Stand: keep the pelvis at standing height over the spot where the task began.
 class StandSkill : public task::Skill {
  public:
-  using Skill::Skill;
+  StandSkill(const task::SkillConfig& c, const task::SkillContext& ctx)
+      : Skill(c, ctx), params_(task::SkillParams<StandParams>(c)) {}
+  const StandParams& params() const { return params_; }
   std::string name() const override { return "toy_stand"; }
   void OnReset(const sim::EnvView& view, Rng&) override { Aim(view); }
   bool BeginInstruction(const sim::EnvView& view, const task::InstructionTarget&) override {
@@ -34,12 +49,13 @@ class StandSkill : public task::Skill {
   sim::TaskStepResult Step(const sim::EnvView& view) override {
     const double d = (view.pose->root_pos - goal(view.env_id, humanoid::kCjPelvis)).norm();
     sim::TaskStepResult r;
-    r.reward = static_cast<float>(std::exp(-4.0 * d * d));
-    r.success = d < 0.3;
+    r.reward = static_cast<float>(std::exp(-params_.kernel * d * d));
+    r.success = d < params_.radius;
     return r;
   }
 
  private:
+  StandParams params_;
   void Aim(const sim::EnvView& view) {
     const Eigen::Vector3d& p = view.pose->root_pos;
     ClearGoals(view.env_id);
@@ -51,6 +67,7 @@ task::SkillInfo StandSkillInfo() {
   task::SkillInfo info;
   info.traits.name = "toy_stand";
   info.traits.description = "stand still where the task begins";
+  task::DeclareParams<StandParams>(&info);
   info.build_scene = [](const task::SkillConfig&, Rng&) { return scene::Scene{}; };
   info.create = [](const task::SkillConfig& c, const task::SkillContext& ctx) {
     return std::make_shared<StandSkill>(c, ctx);
@@ -82,6 +99,10 @@ TEST(ToySkillTest, RegisteredSkillTrainsEvaluatesAndRunsInAStory) {
   const fs::path dir = sims::testing::TempDir("toy_skill");
   const fs::path toy = TrainTiny("toy_stand", dir);
   ASSERT_TRUE(fs::exists(toy));
+  // The run's resolved config lists the toy skill's own keys, flat like every skill key.
+  const nlohmann::json written = ReadJsonFile(dir / "toy_stand" / "config.json");
+  EXPECT_EQ(written["skill"]["toy_stand_radius"], 0.3);
+  EXPECT_EQ(written["skill"]["toy_stand_kernel"], 4.0);
 
   eval::PolicyEvalOptions eo;
   eo.checkpoint = toy;
@@ -120,6 +141,51 @@ TEST(ToySkillTest, RegisteredSkillTrainsEvaluatesAndRunsInAStory) {
   EXPECT_TRUE(r.keyframes[0].success) << r.keyframes[0].note;
   EXPECT_NEAR(r.keyframes[0].end_time, 10.0 / 30.0, 1e-6) << "object timing: 10 held steps";
   EXPECT_EQ(ran, std::vector<std::string>{"toy_stand"});
+}
+
+// The toy skill's params are read from the flat skill config like a built-in skill's, checked
+// against what it declared (unknown keys, types, ranges), and round-trip.
+TEST(ToySkillTest, RegisteredSkillParamsAreLoadedCheckedAndRoundTripped) {
+  ASSERT_EQ(ToySkill().name(), "toy_stand");
+  EXPECT_TRUE(ToySkill().params.contains("toy_stand_radius"));
+  const auto load = [](const nlohmann::json& j) {
+    return ConfigFromJson<task::SkillConfig>(j, "toy.json");
+  };
+  const task::SkillConfig c = load({{"skill", "toy_stand"}, {"toy_stand_radius", 0.5}});
+  EXPECT_EQ(task::SkillParams<StandParams>(c).radius, 0.5);
+  EXPECT_EQ(task::SkillParams<StandParams>(c).kernel, 4.0);  // default
+  const task::SkillConfig back = load(ConfigToJson(c));
+  EXPECT_EQ(back.params, c.params);
+  EXPECT_EQ(ConfigToJson(back), ConfigToJson(c));
+
+  // The skill object built from the config sees the value.
+  auto setup = task::CreateSkill(c, 1, 0);
+  auto* stand = dynamic_cast<StandSkill*>(setup.skill.get());
+  ASSERT_NE(stand, nullptr);
+  EXPECT_EQ(stand->params().radius, 0.5);
+
+  const auto error_of = [&](const nlohmann::json& j) {
+    try {
+      load(j);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string typo = error_of({{"skill", "toy_stand"}, {"toy_stand_raduis", 0.5}});
+  EXPECT_NE(typo.find("toy.json"), std::string::npos) << typo;
+  EXPECT_NE(typo.find("field 'toy_stand_raduis': expected a known field"), std::string::npos)
+      << typo;
+  EXPECT_NE(typo.find("toy_stand_radius"), std::string::npos) << typo;
+  const std::string range = error_of({{"skill", "toy_stand"}, {"toy_stand_radius", -1.0}});
+  EXPECT_NE(range.find("field 'toy_stand_radius': expected a positive distance"), std::string::npos)
+      << range;
+  const std::string type = error_of({{"skill", "toy_stand"}, {"toy_stand_kernel", "wide"}});
+  EXPECT_NE(type.find("field 'toy_stand_kernel': expected a number"), std::string::npos) << type;
+  // Another skill's keys are not this skill's.
+  const std::string other = error_of({{"skill", "walk"}, {"toy_stand_radius", 0.5}});
+  EXPECT_NE(other.find("field 'toy_stand_radius': expected a known field"), std::string::npos)
+      << other;
 }
 
 }  // namespace

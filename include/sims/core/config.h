@@ -116,6 +116,17 @@ class JsonReadArchive {
     }
   }
 
+  /// Copies every key no Visit() has named so far into `rest` (an object) and counts them as
+  /// known: a struct whose remaining keys belong to a plugin (a registered skill's params)
+  /// visits them last and has its Validate() check them.
+  void VisitRest(nlohmann::json* rest) {
+    *rest = nlohmann::json::object();
+    if (!j_.is_object()) return;
+    for (auto it = j_.begin(); it != j_.end(); ++it)
+      if (!seen_.count(it.key())) (*rest)[it.key()] = it.value();
+    for (auto it = rest->begin(); it != rest->end(); ++it) seen_.insert(it.key());
+  }
+
   /// Throws on keys that no Visit() named.
   void CheckNoUnknownKeys() const;
 
@@ -210,6 +221,13 @@ class JsonWriteArchive {
   template <typename T>
   void Visit(const NameValue<T>& nv) {
     (*j_)[nv.name] = Write(*nv.value);
+  }
+
+  /// Writes the keys of `rest` beside the named fields (VisitRest's read side); a named field
+  /// wins over a rest key of the same name.
+  void VisitRest(const nlohmann::json* rest) {
+    for (auto it = rest->begin(); it != rest->end(); ++it)
+      if (!j_->contains(it.key())) (*j_)[it.key()] = it.value();
   }
 
   /// Converts any supported value to JSON.

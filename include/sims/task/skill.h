@@ -54,8 +54,9 @@ struct MotionDataConfig {
   }
 };
 
-/// A skill's training and task settings: the fields every skill reads, then each skill's own
-/// params struct (declared beside the skill). JSON keys are flat, as policy files store them.
+/// A skill's training and task settings: the fields every skill reads, the built-in skills'
+/// params structs (declared beside each skill), then a registered skill's params (`params`,
+/// see DeclareParams). JSON keys are flat, as policy files store them.
 struct SkillConfig {
   std::string skill = "walk";        ///< Registry name.
   MotionDataConfig motion;           ///< Demonstrations.
@@ -70,6 +71,10 @@ struct SkillConfig {
   ObjectParams object;                       ///< Object skills (object_params.h).
   SitParams sit;                             ///< Sit (sit/sit_params.h).
   GetUpParams getup;                         ///< Get-up (getup/getup_params.h).
+  /// The keys of a registered skill's own params (every key the members above do not name),
+  /// flat beside the others and checked against the skill's SkillInfo on load; the skill
+  /// reads them with SkillParams<P>(). A new skill needs no member here.
+  nlohmann::json params = nlohmann::json::object();
 
   /// Lists the fields for JSON binding (the params structs' keys inline).
   template <class A>
@@ -87,8 +92,10 @@ struct SkillConfig {
     object.Serialize(a);
     sit.Serialize(a);
     getup.Serialize(a);
+    a->VisitRest(&params);  // last: whatever no member named
   }
-  /// Checks ranges (the params structs' too).
+  /// Checks ranges (the params structs' too) and that every key of `params` is one the
+  /// registered skill declares, with a valid value.
   void Validate() const;
 };
 
@@ -206,6 +213,8 @@ struct SkillInfo {
   SkillTraits traits;  ///< What other modules know about it (core/skill_vocabulary.h).
   /// Its own config keys with their defaults (the params structs it reads, as JSON).
   nlohmann::json params = nlohmann::json::object();
+  /// Checks SkillConfig::params (throws FieldError naming the key); DeclareParams() sets it.
+  std::function<void(const nlohmann::json&)> check_params;
   /// Builds the scene the skill trains in (empty floor for walk, procedural objects else).
   std::function<scene::Scene(const SkillConfig&, Rng&)> build_scene;
   /// Creates the skill.
@@ -216,6 +225,36 @@ struct SkillInfo {
   /// Registry key.
   const std::string& name() const { return traits.name; }
 };
+
+/// Declares P (a config struct with Serialize and optionally Validate, keys prefixed with the
+/// skill's name) as params of a registered skill: its keys and defaults join info->params, and
+/// a config's values for them are type- and range-checked on load. Call once per struct.
+template <class P>
+void DeclareParams(SkillInfo* info) {
+  info->params.update(ConfigToJson(P{}));
+  info->check_params = [previous = std::move(info->check_params)](const nlohmann::json& j) {
+    if (previous) previous(j);
+    P p;
+    JsonReadArchive::Read(j, &p, /*allow_unknown=*/true);  // keys of the skill's other structs
+  };
+}
+
+/// A registered skill's params struct P: the config's `params` over P's defaults. Throws
+/// sims::Error naming the skill for a value that was never validated (a config built in code).
+template <class P>
+P SkillParams(const SkillConfig& config) {
+  P p;
+  try {
+    JsonReadArchive::Read(config.params, &p, /*allow_unknown=*/true);
+  } catch (const FieldError& e) {
+    ThrowInputError("skill '" + config.skill + "' params", e.field(), e.expected(), e.got());
+  }
+  return p;
+}
+
+/// Adds the defaults of the registered skill's declared params that `config` does not set to
+/// config->params, so the config a run writes lists every value it used.
+void ResolveSkillParams(SkillConfig* config);
 
 /// The explicit skill registry (mujoco_mpc style GetTasks()): the built-in skills, then the
 /// registered ones. References stay valid.

@@ -99,10 +99,10 @@ class GetUpSkill : public ObjectSkill {
   bool StandingClear(const sim::EnvView& view) const;
   /// What the rise-phase reward reads from the character.
   struct RiseInputs {
-    double pelvis_z = 0;     ///< Pelvis height (m).
-    double head_z = 0;       ///< Head height (m).
-    double pelvis_up = 0;    ///< z component of the pelvis up axis.
-    double torso_up = 0;     ///< z component of the torso up axis.
+    double pelvis_z = 0;                                  ///< Pelvis height (m).
+    double head_z = 0;                                    ///< Head height (m).
+    double pelvis_up = 0;                                 ///< z component of the pelvis up axis.
+    double torso_up = 0;                                  ///< z component of the torso up axis.
     Eigen::Vector2d pelvis_xy = Eigen::Vector2d::Zero();  ///< Pelvis (world xy).
   };
   /// The rise inputs of body states b.
