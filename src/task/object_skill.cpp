@@ -28,12 +28,6 @@ scene::Aabb PartLocalBounds(const scene::Object& o, int part) {
   return b;
 }
 
-int PartIndex(const scene::Object& o, const std::string& name) {
-  for (size_t k = 0; k < o.parts.size(); ++k)
-    if (o.parts[k].name == name) return static_cast<int>(k);
-  return -1;
-}
-
 bool FreeAt(const scene::SceneHeightGrid& grid, const Eigen::Vector2d& p, double radius) {
   if (grid.Height(p.x(), p.y()) >= kFloorTolerance) return false;
   for (int k = 0; k < 8; ++k) {
@@ -79,6 +73,31 @@ scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
   return s;
 }
 
+const ObjectPart* ObjectGeometry::part(std::string_view name) const {
+  for (const ObjectPart& p : parts)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+int ObjectGeometry::part_index(std::string_view name) const {
+  const ObjectPart* p = part(name);
+  return p ? p->index : -1;
+}
+
+std::vector<int> ObjectGeometry::part_indices(std::string_view name) const {
+  std::vector<int> out;
+  for (const ObjectPart& p : parts)
+    if (p.name == name) out.push_back(p.index);
+  return out;
+}
+
+const scene::Aabb& ObjectGeometry::part_local(std::string_view name) const {
+  const ObjectPart* p = part(name);
+  SIMS_CHECK_MSG(p != nullptr,
+                 "object " + std::to_string(object) + " has no part '" + std::string(name) + "'");
+  return p->local;
+}
+
 ObjectGeometry DescribeObject(const scene::Scene& scene, int index,
                               const scene::SceneHeightGrid& grid) {
   const scene::Object& o = scene.objects[index];
@@ -90,15 +109,9 @@ ObjectGeometry DescribeObject(const scene::Scene& scene, int index,
   const Eigen::Vector3d c = g.local.center();
   g.center = (o.X_WO * Eigen::Vector3d(c.x(), c.y(), 0)).head<2>();
   g.radius = 0.5 * (g.local.max - g.local.min).head<2>().norm();
-  g.seat = PartIndex(o, "seat surface");
-  g.back = PartIndex(o, "back");
-  g.left_arm = PartIndex(o, "left arm");
-  g.right_arm = PartIndex(o, "right arm");
-  g.mattress = PartIndex(o, "mattress");
   for (size_t k = 0; k < o.parts.size(); ++k)
-    if (o.parts[k].name == "pillow") g.pillows.push_back(static_cast<int>(k));
-  if (g.seat >= 0) g.seat_local = PartLocalBounds(o, g.seat);
-  if (g.mattress >= 0) g.mattress_local = PartLocalBounds(o, g.mattress);
+    g.parts.push_back(
+        {static_cast<int>(k), o.parts[k].name, PartLocalBounds(o, static_cast<int>(k))});
   const double d = kStandDistance;
   const Eigen::Vector2d candidates[] = {{g.local.max.x() + d, c.y()},
                                         {c.x(), g.local.max.y() + d},
@@ -150,30 +163,33 @@ bool ClipFurnitureFrame(const motion::MotionClip& clip, const ObjectGeometry& g,
   if (!bed) {
     // Seat clips: the character faces +x with the seat behind it, seat front edge at x = fx;
     // the object faces the same way (+x is a seat's front).
-    if (g.seat < 0) return false;
-    const double sy = 0.5 * (g.seat_local.min.y() + g.seat_local.max.y()) + lateral_offset;
-    *p_clip = Eigen::Vector2d(fx - g.seat_local.max.x(), cy - sy);
+    const ObjectPart* seat = g.part(kSeatPart);
+    if (!seat) return false;
+    const double sy = 0.5 * (seat->local.min.y() + seat->local.max.y()) + lateral_offset;
+    *p_clip = Eigen::Vector2d(fx - seat->local.max.x(), cy - sy);
     *yaw_clip = 0;
-    *dz = g.seat_local.max.z() - h;
+    *dz = seat->local.max.z() - h;
     return true;
   }
   // Bed clips: the bed's long axis is the clip's y with the head toward +y (−y when mirrored);
   // the character approaches its long side from +x. A procedural bed's long axis is its x
   // with the headboard at −x, so object −x ↦ clip ±y and the mattress edge ↦ x = fx.
-  if (g.mattress < 0) return false;
+  const ObjectPart* mattress = g.part(kMattressPart);
+  if (!mattress) return false;
   const double s = m.mirrored ? -1.0 : 1.0;
-  const double ly_edge = s > 0 ? g.mattress_local.max.y() : g.mattress_local.min.y();
-  const double lx_head = g.mattress_local.min.x();
+  const double ly_edge = s > 0 ? mattress->local.max.y() : mattress->local.min.y();
+  const double lx_head = mattress->local.min.x();
   const double y_head = cy + s * w / 2;
   *p_clip = Eigen::Vector2d(fx - s * ly_edge, y_head + s * lx_head);
   *yaw_clip = -s * M_PI / 2;
-  *dz = g.mattress_local.max.z() - h;
+  *dz = mattress->local.max.z() - h;
   return true;
 }
 
 double SeatLateral(const ObjectGeometry& g, Rng& rng) {
-  if (g.seat < 0) return 0;
-  const double half = 0.5 * (g.seat_local.max.y() - g.seat_local.min.y()) - 0.35;
+  const ObjectPart* seat = g.part(kSeatPart);
+  if (!seat) return 0;
+  const double half = 0.5 * (seat->local.max.y() - seat->local.min.y()) - 0.35;
   return half > 0 ? rng.Uniform(-half, half) : 0.0;
 }
 

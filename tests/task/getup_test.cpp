@@ -91,9 +91,9 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
   int on_furniture = 0;
   for (int i = 0; i < 6; ++i) {
     if (getup->floor_start(i)) continue;
-    EXPECT_EQ(getup->start_label(i), getup->geometry(i).mattress >= 0 ? "bed" : "seat");
+    EXPECT_EQ(getup->start_label(i), getup->geometry(i).part(kMattressPart) ? "bed" : "seat");
     const ObjectGeometry& g = getup->geometry(i);
-    const int part = g.seat >= 0 ? g.seat : g.mattress;
+    const int part = g.part(kSeatPart) ? g.part_index(kSeatPart) : g.part_index(kMattressPart);
     const Eigen::Vector3d pelvis = s.env->bodies(i).pos[humanoid::kPelvis];
     const double d =
         (scene::NearestPointOnPart(scene.objects[g.object].parts[part], pelvis) - pelvis).norm();
@@ -128,10 +128,10 @@ TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {
       // Lying on this bed's mattress, not sunk into it.
       const ObjectGeometry& g = getup->geometry(i);
       const Eigen::Vector3d pelvis = s.env->bodies(i).pos[humanoid::kPelvis];
-      const Eigen::Vector3d on =
-          scene::NearestPointOnPart(scene.objects[g.object].parts[g.mattress], pelvis);
+      const Eigen::Vector3d on = scene::NearestPointOnPart(
+          scene.objects[g.object].parts[g.part_index(kMattressPart)], pelvis);
       EXPECT_LT((on - pelvis).norm(), 0.3) << i;
-      EXPECT_GT(pelvis.z(), g.ToWorld(g.mattress_local.max).z() - 0.05) << i;
+      EXPECT_GT(pelvis.z(), g.ToWorld(g.part_local(kMattressPart).max).z() - 0.05) << i;
     }
     return beds;
   };
@@ -237,8 +237,9 @@ TEST(GetUpSkillTest, SuccessIsStandingUprightOnTheFloorAlone) {
   EXPECT_TRUE(getup->StandingClear(ViewOf(*s.env, 0)));
   // The same pose on the mattress: standing, but on furniture.
   const ObjectGeometry& g = getup->geometry(0);
-  const Eigen::Vector3d top = g.ToWorld(g.mattress_local.center());
-  s.env->SetState(0, PoseAt(Eigen::Vector3d(top.x(), top.y(), g.mattress_local.max.z() + 0.87)));
+  const scene::Aabb& mattress = g.part_local(kMattressPart);
+  const Eigen::Vector3d top = g.ToWorld(mattress.center());
+  s.env->SetState(0, PoseAt(Eigen::Vector3d(top.x(), top.y(), mattress.max.z() + 0.87)));
   EXPECT_GT(ViewOf(*s.env, 0).data->ncon, 0);
   EXPECT_TRUE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
   EXPECT_FALSE(getup->StandingClear(ViewOf(*s.env, 0)));

@@ -36,7 +36,7 @@ TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
   humanoid::MjDataPtr scratch = humanoid::MakeData(s.setup.context.humanoid->model());
   int checked = 0;
   for (const auto& g : lie->objects()) {
-    ASSERT_FALSE(g.pillows.empty());
+    ASSERT_FALSE(g.part_indices("pillow").empty());
     for (int clip : lib.Find("lie")) {
       for (bool mirror : {false, true}) {
         const motion::MotionClip c = mirror ? motion::MirrorClip(lib.clip(clip)) : lib.clip(clip);
@@ -54,9 +54,12 @@ TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
         const Eigen::Vector3d pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
         const Eigen::Vector3d head = humanoid::ContactJointPosition(b, humanoid::kCjHead);
         double head_d = 1e9;
-        for (int p : g.pillows)
+        for (int p : g.part_indices("pillow"))
           head_d = std::min(head_d, (scene::NearestPointOnPart(bed.parts[p], head) - head).norm());
-        EXPECT_LT((scene::NearestPointOnPart(bed.parts[g.mattress], pelvis) - pelvis).norm(), 0.3)
+        EXPECT_LT(
+            (scene::NearestPointOnPart(bed.parts[g.part_index(kMattressPart)], pelvis) - pelvis)
+                .norm(),
+            0.3)
             << c.meta().name;
         EXPECT_LT(head_d, 0.3) << c.meta().name;
         ++checked;
@@ -76,9 +79,9 @@ TEST(LieSkillTest, GoalsRewardAndThreshold) {
   EXPECT_EQ(lie->goal_mask(0), (1u << humanoid::kCjPelvis) | (1u << humanoid::kCjHead));
   // The pelvis target: the mattress centre, 0.11 m above its top (the lie clips' pelvis).
   const ObjectGeometry& g = lie->geometry(0);
-  const Eigen::Vector3d target =
-      g.ToWorld(Eigen::Vector3d(g.mattress_local.center().x(), g.mattress_local.center().y(),
-                                g.mattress_local.max.z() + 0.11));
+  const scene::Aabb& mattress = g.part_local(kMattressPart);
+  const Eigen::Vector3d target = g.ToWorld(
+      Eigen::Vector3d(mattress.center().x(), mattress.center().y(), mattress.max.z() + 0.11));
   EXPECT_NEAR((lie->target(0) - target).norm(), 0, 1e-9);
   // The anchor stands beside the bed's long side (the episode's side).
   const Eigen::Vector3d a_O =

@@ -82,10 +82,11 @@ TEST(SitSkillTest, TrainingGroundAndObservation) {
     // The pelvis goal is the fixed target: behind the seat's front edge (at most its centre),
     // the seated pelvis height above its top, at the episode's place along the seat.
     const Eigen::Vector3d t_O = g.X_WO.inverse() * sit->target(i);
-    EXPECT_NEAR(t_O.x(), std::max(g.seat_local.center().x(), g.seat_local.max.x() - 0.2), 1e-9);
-    EXPECT_NEAR(t_O.y(), g.seat_local.center().y() + sit->lateral(i), 1e-9);
-    EXPECT_NEAR(t_O.z(), g.seat_local.max.z() + 0.085, 1e-9);
-    EXPECT_LE(std::abs(sit->lateral(i)), 0.5 * (g.seat_local.max.y() - g.seat_local.min.y()));
+    const scene::Aabb& seat = g.part_local(kSeatPart);
+    EXPECT_NEAR(t_O.x(), std::max(seat.center().x(), seat.max.x() - 0.2), 1e-9);
+    EXPECT_NEAR(t_O.y(), seat.center().y() + sit->lateral(i), 1e-9);
+    EXPECT_NEAR(t_O.z(), seat.max.z() + 0.085, 1e-9);
+    EXPECT_LE(std::abs(sit->lateral(i)), 0.5 * (seat.max.y() - seat.min.y()));
     EXPECT_NEAR((sit->goal(i, humanoid::kCjPelvis) - sit->target(i)).norm(), 0, 1e-12);
     // The far anchor stands kStandDistance in front of the object.
     const Eigen::Vector3d a_O =
@@ -124,9 +125,10 @@ TEST(SitSkillTest, SeatClipsLandOnTheTarget) {
   int checked = 0;
   for (size_t k = 0; k < sit->objects().size(); ++k) {
     const ObjectGeometry& g = sit->objects()[k];
-    const Eigen::Vector3d mid = g.seat_local.center();
-    const Eigen::Vector3d target = g.ToWorld(
-        {std::max(mid.x(), g.seat_local.max.x() - 0.2), mid.y(), g.seat_local.max.z() + 0.085});
+    const scene::Aabb& seat = g.part_local(kSeatPart);
+    const Eigen::Vector3d mid = seat.center();
+    const Eigen::Vector3d target =
+        g.ToWorld({std::max(mid.x(), seat.max.x() - 0.2), mid.y(), seat.max.z() + 0.085});
     for (int clip : lib.Find("sit")) {
       Eigen::Vector2d p_clip;
       double yaw_clip = 0, dz = 0;

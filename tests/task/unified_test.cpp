@@ -278,7 +278,7 @@ TEST(UnifiedSkillTest, StepsAdvanceWithinTheEpisode) {
   ContactPairSpec p;
   p.joint = humanoid::kCjPelvis;
   p.object = g.object;
-  p.part = g.seat;
+  p.part = g.part_index(kSeatPart);
   p.direction = {0, 0, 1};
   sit.pairs = {p};
   u->SetPlan({walk, sit});
@@ -295,9 +295,9 @@ TEST(UnifiedSkillTest, StepsAdvanceWithinTheEpisode) {
   EXPECT_EQ(u->steps_completed(0), 1);
   EXPECT_EQ(u->goal_mask(0), 1u << humanoid::kCjPelvis);  // now the seat
   // Sitting still above the seat passes the last step: success ends the episode.
-  const Eigen::Vector3d mid = g.seat_local.center();
-  s.env->SetState(0,
-                  PoseAt(g.ToWorld(Eigen::Vector3d(mid.x(), mid.y(), g.seat_local.max.z() + 0.2))));
+  const scene::Aabb& seat = g.part_local(kSeatPart);
+  const Eigen::Vector3d mid = seat.center();
+  s.env->SetState(0, PoseAt(g.ToWorld(Eigen::Vector3d(mid.x(), mid.y(), seat.max.z() + 0.2))));
   sim::TaskStepResult r;
   for (int k = 0; k < 11; ++k) r = u->Step(ViewOf(*s.env, 0));
   EXPECT_TRUE(r.success);

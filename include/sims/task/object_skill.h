@@ -16,6 +16,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sims/scene/mesh.h"
@@ -45,6 +46,17 @@ scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
                                  const std::vector<std::string>& default_categories);
 
 /// What an object skill knows about one scene object (all in the object frame unless noted).
+/// The part a seat clip puts the pelvis on and the one a bed clip lies on (scene/builtin.h).
+inline constexpr std::string_view kSeatPart = "seat surface";
+inline constexpr std::string_view kMattressPart = "mattress";
+
+/// One part of an object, in the object frame.
+struct ObjectPart {
+  int index = -1;     ///< Index in scene::Object::parts.
+  std::string name;   ///< Its name (scene/builtin.h lists the built-in furniture's parts).
+  scene::Aabb local;  ///< Bounds in the object frame.
+};
+
 struct ObjectGeometry {
   int object = -1;                                         ///< Scene object index.
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();  ///< Pose (yaw-only for furniture).
@@ -52,15 +64,18 @@ struct ObjectGeometry {
   scene::Aabb local;                                       ///< Bounds in the object frame.
   Eigen::Vector2d center = Eigen::Vector2d::Zero();        ///< World xy of the footprint centre.
   double radius = 0;                          ///< Footprint bounding-circle radius (m).
-  int seat = -1;                              ///< Part index of "seat surface" (or −1).
-  int back = -1;                              ///< "back".
-  int left_arm = -1;                          ///< "left arm".
-  int right_arm = -1;                         ///< "right arm".
-  int mattress = -1;                          ///< "mattress".
-  std::vector<int> pillows;                   ///< "pillow" parts.
-  scene::Aabb seat_local;                     ///< Seat part bounds in the object frame.
-  scene::Aabb mattress_local;                 ///< Mattress part bounds in the object frame.
+  std::vector<ObjectPart> parts;              ///< Every part, in the object's order.
   std::vector<Eigen::Vector3d> stand_points;  ///< Free floor points around it (z = 0), front first.
+
+  /// The first part named `name` ("seat surface", "mattress", ...), or nullptr: a skill names
+  /// the parts it binds to, so a new kind of part needs no change here.
+  const ObjectPart* part(std::string_view name) const;
+  /// Index (into the object's parts) of the first part named `name`, or −1.
+  int part_index(std::string_view name) const;
+  /// Indices of every part named `name` (a bed's pillows).
+  std::vector<int> part_indices(std::string_view name) const;
+  /// Object-frame bounds of the first part named `name`; the part must exist (aborts).
+  const scene::Aabb& part_local(std::string_view name) const;
 
   /// Object-frame point → world.
   Eigen::Vector3d ToWorld(const Eigen::Vector3d& p_O) const { return X_WO * p_O; }

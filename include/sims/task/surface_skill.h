@@ -21,9 +21,9 @@ namespace sims::task {
 
 /// Which parts a surface skill targets (sit.cpp and lie.cpp each fill one).
 struct SurfaceTask {
-  std::string clip_skill;            ///< Motion clips of this label feed reference init.
-  std::string what;                  ///< The object it needs, for "no suitable object" errors.
-  int ObjectGeometry::*pelvis_part;  ///< The part the pelvis goes on (seat, mattress).
+  std::string clip_skill;   ///< Motion clips of this label feed reference init.
+  std::string what;         ///< The object it needs, for "no suitable object" errors.
+  std::string pelvis_part;  ///< The part the pelvis goes on (kSeatPart, kMattressPart).
   /// The episode's lateral choice on object g (e.g. SeatLateral; null = always 0).
   double (*lateral)(const ObjectGeometry& g, Rng& rng) = nullptr;
   /// The pelvis target in the object frame for that choice.
@@ -53,7 +53,9 @@ class SurfaceSkill : public ObjectSkill {
   double lateral(int env_id) const { return lateral_[env_id]; }
 
  protected:
-  bool Accepts(const ObjectGeometry& g) const override { return g.*task_.pelvis_part >= 0; }
+  bool Accepts(const ObjectGeometry& g) const override {
+    return g.part(task_.pelvis_part) != nullptr;
+  }
   bool observes_object() const override { return true; }
   double ClipContactTime(int clip) const override;
   void SampleTask(int env_id, Rng& rng) override;

@@ -121,7 +121,9 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
   CollectObjects("seat or bed (a 'seat surface' or 'mattress' part)");
 }
 
-bool GetUpSkill::Accepts(const ObjectGeometry& g) const { return g.seat >= 0 || g.mattress >= 0; }
+bool GetUpSkill::Accepts(const ObjectGeometry& g) const {
+  return g.part(kSeatPart) || g.part(kMattressPart);
+}
 
 uint32_t GetUpSkill::contact_body_mask() const {
   using namespace humanoid;
@@ -216,7 +218,7 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   }
   ClipPlacement placement;
   const double lateral = SeatLateral(geometry(i), rng);
-  const bool bed = geometry(i).mattress >= 0;
+  const bool bed = geometry(i).part(kMattressPart) != nullptr;
   const int clip = ChooseFurnitureClip(furniture_clips_, geometry(i), lateral, rng, &placement,
                                        bed ? config_.getup.bed_raise : kMaxClipHeightMismatch);
   if (clip < 0) return false;

@@ -12,21 +12,24 @@ SurfaceTask LieTask() {
   SurfaceTask t;
   t.clip_skill = "lie";
   t.what = "bed (an object with a 'mattress' part)";
-  t.pelvis_part = &ObjectGeometry::mattress;
+  t.pelvis_part = kMattressPart;
   // The side of the bed the character lies down from (the clips come in mirrored pairs).
   t.lateral = [](const ObjectGeometry&, Rng& rng) { return rng.Bernoulli(0.5) ? 1.0 : -1.0; };
   // The mattress centre, the lying pelvis height (the lie clips: 0.11 m) above its top.
   t.target_local = [](const ObjectGeometry& g, double, const SkillConfig&) {
-    const Eigen::Vector3d mid = g.mattress_local.center();
-    return Eigen::Vector3d(mid.x(), mid.y(), g.mattress_local.max.z() + kLyingPelvisHeight);
+    const scene::Aabb& mattress = g.part_local(kMattressPart);
+    const Eigen::Vector3d mid = mattress.center();
+    return Eigen::Vector3d(mid.x(), mid.y(), mattress.max.z() + kLyingPelvisHeight);
   };
   // A stand point beside the bed's long side (a procedural bed's long axis is its x).
   t.anchor_local = [](const ObjectGeometry& g, double side) {
     const double y = side > 0 ? g.local.max.y() + kStandDistance : g.local.min.y() - kStandDistance;
-    return Eigen::Vector3d(g.mattress_local.center().x(), y, 0.0);
+    return Eigen::Vector3d(g.part_local(kMattressPart).center().x(), y, 0.0);
   };
   t.extra_joint = humanoid::kCjHead;
-  t.extra_parts = [](const ObjectGeometry& g, const SkillConfig&) { return g.pillows; };
+  t.extra_parts = [](const ObjectGeometry& g, const SkillConfig&) {
+    return g.part_indices("pillow");
+  };
   t.extra_in_success = true;  // lying means the head is on the pillow too
   return t;
 }

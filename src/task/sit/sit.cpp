@@ -13,25 +13,26 @@ SurfaceTask SitTask() {
   SurfaceTask t;
   t.clip_skill = "sit";
   t.what = "object with a 'seat surface' part";
-  t.pelvis_part = &ObjectGeometry::seat;
+  t.pelvis_part = kSeatPart;
   t.lateral = SeatLateral;
   // Where the sit clips put the pelvis: behind the seat's front edge (at most its centre) and
   // the seated pelvis height above the seat top.
   t.target_local = [](const ObjectGeometry& g, double lateral, const SkillConfig& c) {
-    const scene::Aabb& seat = g.seat_local;
+    const scene::Aabb& seat = g.part_local(kSeatPart);
     const Eigen::Vector3d mid = seat.center();
     return Eigen::Vector3d(std::max(mid.x(), seat.max.x() - c.sit.target_behind_edge),
                            mid.y() + lateral, seat.max.z() + c.sit.pelvis_height);
   };
   // A stand point in front of the seat (objects face +x).
   t.anchor_local = [](const ObjectGeometry& g, double lateral) {
-    return Eigen::Vector3d(g.local.max.x() + kStandDistance, g.seat_local.center().y() + lateral,
-                           0.0);
+    return Eigen::Vector3d(g.local.max.x() + kStandDistance,
+                           g.part_local(kSeatPart).center().y() + lateral, 0.0);
   };
   t.extra_joint = humanoid::kCjTorso;
   // The back rest, when the config asks for it and the seat has one.
   t.extra_parts = [](const ObjectGeometry& g, const SkillConfig& c) {
-    return c.sit.back_contact && g.back >= 0 ? std::vector<int>{g.back} : std::vector<int>{};
+    const int back = g.part_index("back");
+    return c.sit.back_contact && back >= 0 ? std::vector<int>{back} : std::vector<int>{};
   };
   t.extra_in_success = false;  // leaning back is rewarded, not required
   return t;

@@ -99,24 +99,28 @@ std::vector<ContactStep> UnifiedSkill::Templates(int k) const {
     t.push_back(std::move(s));
   };
   using namespace humanoid;
-  if (g.seat >= 0) {
-    const ContactPairSpec sit = PartPair(kCjPelvis, C, g.object, g.seat, up);
+  const int seat = g.part_index(kSeatPart), back = g.part_index("back");
+  const int left_arm = g.part_index("left arm"), right_arm = g.part_index("right arm");
+  const int mattress = g.part_index(kMattressPart);
+  const std::vector<int> pillows = g.part_indices("pillow");
+  if (seat >= 0) {
+    const ContactPairSpec sit = PartPair(kCjPelvis, C, g.object, seat, up);
     add("sit", {sit});
-    if (g.back >= 0) {
-      add("sit, lean back", {sit, PartPair(kCjTorso, C, g.object, g.back, front)});
-      add("sit upright", {sit, PartPair(kCjTorso, N, g.object, g.back)});
+    if (back >= 0) {
+      add("sit, lean back", {sit, PartPair(kCjTorso, C, g.object, back, front)});
+      add("sit upright", {sit, PartPair(kCjTorso, N, g.object, back)});
     }
-    if (g.left_arm >= 0 && g.right_arm >= 0)
-      add("sit, hands on the arm rests", {sit, PartPair(kCjLeftHand, C, g.object, g.left_arm, up),
-                                          PartPair(kCjRightHand, C, g.object, g.right_arm, up)});
+    if (left_arm >= 0 && right_arm >= 0)
+      add("sit, hands on the arm rests", {sit, PartPair(kCjLeftHand, C, g.object, left_arm, up),
+                                          PartPair(kCjRightHand, C, g.object, right_arm, up)});
     add("sit, hands on the knees",
         {sit, JointPairSpec(kCjLeftHand, kCjLeftKnee), JointPairSpec(kCjRightHand, kCjRightKnee)});
   }
-  if (g.mattress >= 0) {
-    const ContactPairSpec on_bed = PartPair(kCjPelvis, C, g.object, g.mattress, up);
+  if (mattress >= 0) {
+    const ContactPairSpec on_bed = PartPair(kCjPelvis, C, g.object, mattress, up);
     add("sit on the bed", {on_bed});
-    if (!g.pillows.empty())
-      add("lie on the bed", {on_bed, PartPair(kCjHead, C, g.object, g.pillows[0], up)});
+    if (!pillows.empty())
+      add("lie on the bed", {on_bed, PartPair(kCjHead, C, g.object, pillows[0], up)});
   }
   for (size_t p = 0; p < o.parts.size(); ++p) {
     const std::string& n = o.parts[p].name;
