@@ -258,8 +258,9 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   auto save_all = [&]() {
     if (!writer) return;
     trainer.SaveCheckpoint(ckpt_path);
-    // What a campaign commits between sessions (no replay buffer; --resume accepts it).
-    trainer.SaveCheckpoint(out / "checkpoint_compact.pt", /*with_replay=*/false);
+    // What a campaign commits between sessions (no replay buffer, no optimiser moments;
+    // --resume accepts it).
+    trainer.SaveCheckpoint(out / "checkpoint_compact.pt", /*full=*/false);
     trainer.ExportPolicy(out / "policy.pt", extra.dump());
     io::WriteTrainingReport(csv_path, out / "report.html", "train_policy " + config.skill.skill);
   };

@@ -151,7 +151,8 @@ struct Trainer::Impl {
                          UpdateTotals* u);
 
   /// Networks, normalisers, optimiser, minibatch stream and counters: what all ranks share.
-  void WriteLearnerState(torch::serialize::OutputArchive& archive) const;
+  /// Without `with_optimizer` the optimiser's moments are left out (compact checkpoints).
+  void WriteLearnerState(torch::serialize::OutputArchive& archive, bool with_optimizer) const;
   /// Reads WriteLearnerState() output; `source` names it in errors.
   void ReadLearnerState(torch::serialize::InputArchive& archive, const std::string& source);
 
@@ -417,6 +418,7 @@ Trainer::Trainer(std::shared_ptr<VecEnv> env, std::shared_ptr<const DemoSource> 
 Trainer::~Trainer() = default;
 
 int64_t Trainer::iteration() const { return impl_->iteration; }
+double Trainer::learning_rate() const { return impl_->learning_rate; }
 const LearnerConfig& Trainer::config() const { return impl_->cfg; }
 
 // ---- one iteration: rollout → batch (style rewards, advantages) → minibatch updates -----------
@@ -886,7 +888,8 @@ void SetRng(Rng& rng, const torch::Tensor& t) {
 }  // namespace
 
 // What every rank shares: networks, normalisers, optimiser, minibatch order and counters.
-void Trainer::Impl::WriteLearnerState(torch::serialize::OutputArchive& archive) const {
+void Trainer::Impl::WriteLearnerState(torch::serialize::OutputArchive& archive,
+                                      bool with_optimizer) const {
   const auto& m = *this;
   WriteModule(archive, "actor_critic", m.ac);
   WriteModule(archive, "obs_norm", m.obs_norm);
@@ -895,9 +898,11 @@ void Trainer::Impl::WriteLearnerState(torch::serialize::OutputArchive& archive) 
     WriteModule(archive, "disc", m.disc);
     WriteModule(archive, "amp_norm", m.amp_norm);
   }
-  torch::serialize::OutputArchive opt;
-  m.optim->save(opt);
-  archive.write("optimizer", opt);
+  if (with_optimizer) {
+    torch::serialize::OutputArchive opt;
+    m.optim->save(opt);
+    archive.write("optimizer", opt);
+  }
   WriteTensor(archive, "rng", RngTensor(m.rng));
   WriteTensor(archive, "counters", torch::tensor({m.iteration, m.samples}, torch::kInt64));
   WriteTensor(archive, "learning_rate", torch::tensor({m.learning_rate}, torch::kFloat64));
@@ -921,8 +926,14 @@ void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
     m.amp_norm->PerFeatureCount();
   }
   torch::serialize::InputArchive opt;
-  archive.read("optimizer", opt);
-  m.optim->load(opt);
+  if (archive.try_read("optimizer", opt)) {
+    m.optim->load(opt);
+  } else {
+    // A compact checkpoint: Adam's moments start again from zero (its first steps are
+    // bias-corrected, so the step size stays the learning rate kept below).
+    m.optim->state().clear();
+    spdlog::info("{}: no optimiser moments (a compact checkpoint); Adam restarts", source);
+  }
   SetRng(m.rng, ReadTensor(archive, "rng"));
   const auto counters = ReadTensor(archive, "counters");
   m.iteration = counters[0].item<int64_t>();
@@ -937,13 +948,13 @@ void Trainer::Impl::ReadLearnerState(torch::serialize::InputArchive& archive,
   RebuildDemoPool();
 }
 
-void Trainer::SaveCheckpoint(const std::filesystem::path& path, bool with_replay) const {
+void Trainer::SaveCheckpoint(const std::filesystem::path& path, bool full) const {
   const auto& m = *impl_;
   torch::serialize::OutputArchive archive;
-  m.WriteLearnerState(archive);
+  m.WriteLearnerState(archive, /*with_optimizer=*/full);
   // This rank's own state: replay buffer, sampling streams, episodes, environments. With
   // ranks, rank 0 writes the checkpoint; the others restart their environments on resume.
-  if (m.use_amp && with_replay) {
+  if (m.use_amp && full) {
     WriteTensor(archive, "replay_data", m.replay->data());
     WriteTensor(archive, "replay_styles", m.replay->styles());
     WriteTensor(archive, "replay_size", torch::tensor({m.replay->size()}, torch::kInt64));
@@ -1014,7 +1025,7 @@ void Trainer::Synchronize() {
   std::string bytes;
   if (m.rank == 0) {
     torch::serialize::OutputArchive archive;
-    m.WriteLearnerState(archive);
+    m.WriteLearnerState(archive, /*with_optimizer=*/true);
     std::ostringstream out;
     archive.save_to(out);
     bytes = out.str();

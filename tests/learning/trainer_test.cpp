@@ -98,8 +98,9 @@ TEST(PolicyTest, RowExactBatchesGiveEachRowItsLoneAction) {
   }
 }
 
-// A compact checkpoint (no replay buffer) is what a campaign commits between sessions: it is
-// smaller, restores the networks and counters exactly, and training goes on from it.
+// A compact checkpoint (no replay buffer, no optimiser moments) is what a campaign commits
+// between sessions: it is smaller, restores the networks, counters and learning rate exactly,
+// and training goes on from it.
 TEST(TrainerTest, CompactCheckpointResumesWithoutTheReplay) {
   const auto dir = sims::testing::TempDir("trainer_compact");
   LearnerConfig c = ToyConfig(true);
@@ -107,7 +108,7 @@ TEST(TrainerTest, CompactCheckpointResumesWithoutTheReplay) {
   Trainer a = MakeTrainer(c);
   a.RunIteration();
   a.SaveCheckpoint(dir / "full.pt");
-  a.SaveCheckpoint(dir / "compact.pt", /*with_replay=*/false);
+  a.SaveCheckpoint(dir / "compact.pt", /*full=*/false);
   EXPECT_LT(std::filesystem::file_size(dir / "compact.pt"),
             std::filesystem::file_size(dir / "full.pt") / 2);
   Trainer b = MakeTrainer(c, /*env_seed=*/99);
@@ -117,6 +118,25 @@ TEST(TrainerTest, CompactCheckpointResumesWithoutTheReplay) {
   const IterationStats s = b.RunIteration();
   EXPECT_EQ(s.iteration, 2);
   EXPECT_TRUE(std::isfinite(s.disc_loss));
+
+  // Without AMP (no replay) the optimiser's two moments per weight are most of a full file.
+  LearnerConfig adaptive = ToyConfig(false);
+  adaptive.ppo.lr_schedule = "adaptive";
+  const auto make = [&](uint64_t env_seed) {
+    return Trainer(std::make_shared<testing::PointMassEnv>(32, env_seed), nullptr, adaptive);
+  };
+  Trainer p = make(5);
+  p.RunIteration();
+  ASSERT_NE(p.learning_rate(), adaptive.ppo.learning_rate) << "the schedule moved it";
+  p.SaveCheckpoint(dir / "ppo_full.pt");
+  p.SaveCheckpoint(dir / "ppo_compact.pt", /*full=*/false);
+  EXPECT_LT(std::filesystem::file_size(dir / "ppo_compact.pt"),
+            0.6 * std::filesystem::file_size(dir / "ppo_full.pt"));
+  Trainer q = make(99);
+  q.LoadCheckpoint(dir / "ppo_compact.pt");
+  EXPECT_EQ(p.FlatParameters(), q.FlatParameters());
+  EXPECT_EQ(q.learning_rate(), p.learning_rate()) << "the learning rate is kept";
+  EXPECT_EQ(q.RunIteration().iteration, 2);
 }
 
 // A campaign may change the fixed exploration noise between chunks: a checkpoint loads under

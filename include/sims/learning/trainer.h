@@ -71,13 +71,16 @@ class Trainer {
   IterationStats RunIteration();
   /// Iterations completed.
   int64_t iteration() const;
-  /// Writes a checkpoint atomically: networks, optimiser, normalisers, RNG, environment state,
-  /// counters and (with_replay) the AMP replay buffer. Without it the file is ~10× smaller
-  /// (what a training campaign commits between sessions); resuming from it is exact except
-  /// that the replay buffer refills from the next rollouts.
-  void SaveCheckpoint(const std::filesystem::path& path, bool with_replay = true) const;
-  /// Restores SaveCheckpoint() output (with or without the replay buffer); throws sims::Error
-  /// naming the file on mismatch.
+  /// The learning rate the next update uses (the adaptive schedule moves it).
+  double learning_rate() const;
+  /// Writes a checkpoint atomically: networks, normalisers, RNG, environment state, counters
+  /// and, when `full`, the optimiser's moments and the AMP replay buffer. A compact one (not
+  /// full) is ~30× smaller: what a training campaign commits between sessions. Resuming from it
+  /// is exact except that the replay buffer refills from the next rollouts and Adam's moments
+  /// restart from zero (the learning rate is kept).
+  void SaveCheckpoint(const std::filesystem::path& path, bool full = true) const;
+  /// Restores SaveCheckpoint() output (full or compact); throws sims::Error naming the file on
+  /// mismatch.
   void LoadCheckpoint(const std::filesystem::path& path);
   /// Copies rank 0's learner state (networks, normalisers, optimiser, counters) to every
   /// rank; call on all ranks after rank 0 alone loaded a checkpoint or policy. No-op alone.
