@@ -106,6 +106,29 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
   EXPECT_GE(on_furniture, 4);
 }
 
+// Training may start further into the rise (half-risen states); evaluation starts seated.
+TEST(GetUpSkillTest, ReferenceWindowReachesIntoTheRiseOnlyInTraining) {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {"chair"};
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
+  const auto highest_pelvis = [&](double fraction) {
+    SkillConfig k = c;
+    k.getup.reference_max_fraction = fraction;
+    auto s = MakeSkillEnv(k, 12);
+    double top = 0;
+    for (int i = 0; i < 12; ++i) top = std::max(top, s.env->bodies(i).pos[humanoid::kPelvis].z());
+    return top;
+  };
+  const double seated = highest_pelvis(0.25);
+  EXPECT_LT(seated, c.getup.standing_pelvis_height);
+  EXPECT_GT(highest_pelvis(0.9), seated + 0.1);
+  SkillConfig eval = c;
+  eval.getup.reference_max_fraction = 0.9;
+  FindSkill("getup").configure_eval(&eval);
+  EXPECT_EQ(eval.getup.reference_max_fraction, 0.25);
+}
+
 // Held-out beds reach 0.62 m, past the bed clips (0.42–0.53 m) and their 5 cm: a lying start is
 // lifted onto a higher bed (getup_bed_raise), so every held-out bed gets bed starts.
 TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {

@@ -23,6 +23,8 @@ constexpr uint64_t kFallSeed = 0xFA11u;
 constexpr double kLyingReach = 1.0;
 // Free floor kept around the outermost body of a floor start (m).
 constexpr double kFloorMargin = 0.3;
+// The first quarter of a get-up clip is still seated or lying.
+constexpr double kSeatedFraction = 0.25;
 
 // The fall states for `count`, generated once per process (every env of every skill instance
 // shares them read-only).
@@ -93,6 +95,8 @@ void GetUpParams::Validate() const {
   Require(standing_head_height > standing_pelvis_height && standing_pelvis_height > 0,
           "getup_standing_head_height", "heights with 0 < pelvis < head (m)");
   Require(bed_raise >= 0 && bed_raise <= 0.5, "getup_bed_raise", "a height in [0, 0.5] m");
+  Require(reference_max_fraction > 0 && reference_max_fraction <= 1, "getup_reference_max_fraction",
+          "a fraction in (0, 1]");
 }
 
 GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
@@ -205,7 +209,7 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   if (floor) {
     const int clip = floor_clips_[rng.UniformInt(static_cast<int64_t>(floor_clips_.size()))];
     const auto& c = context_.motions->clip(clip);
-    const double t = rng.Uniform(0.0, 0.25 * c.duration());  // still lying
+    const double t = rng.Uniform(0.0, config_.getup.reference_max_fraction * c.duration());
     Eigen::Vector2d p;
     if (!ClearFloorPoint(i, kLyingReach, rng, &p)) return false;
     const Eigen::Vector2d root = context_.motions->StateAt(clip, t).pose.root_pos.head<2>();
@@ -222,7 +226,10 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   const int clip = ChooseFurnitureClip(furniture_clips_, geometry(i), lateral, rng, &placement,
                                        bed ? config_.getup.bed_raise : kMaxClipHeightMismatch);
   if (clip < 0) return false;
-  const double t = rng.Uniform(0.0, 0.25 * context_.motions->clip(clip).duration());
+  const double f = placement.dz > kMaxClipHeightMismatch
+                       ? std::min(config_.getup.reference_max_fraction, kSeatedFraction)
+                       : config_.getup.reference_max_fraction;
+  const double t = rng.Uniform(0.0, f * context_.motions->clip(clip).duration());
   PlaceReference(i, clip, t, placement, init);
   getup_[i].start = bed ? kBedStart : kSeatStart;
   return true;
@@ -342,6 +349,8 @@ SkillInfo GetUpSkillInfo() {
   info.create = [](const SkillConfig& c, const SkillContext& ctx) -> std::shared_ptr<Skill> {
     return std::make_shared<GetUpSkill>(c, ctx);
   };
+  // Evaluation starts seated or lying, whatever share of the rise training started from.
+  info.configure_eval = [](SkillConfig* c) { c->getup.reference_max_fraction = kSeatedFraction; };
   return info;
 }
 

@@ -1,7 +1,8 @@
 // Get-up: from sitting on a seat, lying on a bed or lying on the floor to standing.
 //
 // Starts (hybrid, reference_init_prob):
-//   reference: a get-up clip's first quarter (still seated / lying). Furniture clips are placed
+//   reference: a get-up clip's first getup_reference_max_fraction (by default and in evaluation
+//     the first quarter: still seated / lying). Furniture clips are placed
 //     on the env's seat or bed by their stored furniture parameters; floor clips (clips with no
 //     furniture parameters: supine or prone on the floor) at a free floor point clear of the
 //     furniture, a getup_floor_clip_share of the reference starts, with the fall states' grace.

@@ -23,6 +23,13 @@ struct GetUpParams {
   /// first quarter of such a clip lies on the mattress, so the clip is lifted with it. Lower beds
   /// keep the 5 cm of every furniture clip (kMaxClipHeightMismatch).
   double bed_raise = 0.15;
+  /// Reference starts draw their clip time from the first this fraction of a get-up clip. The
+  /// first quarter is still seated or lying (what evaluation uses, GetUpSkillInfo's
+  /// configure_eval); training may reach further into the rise, so the policy also practises
+  /// finishing a rise from leaning, half-risen states (reference state init, DeepMimic). Lifted
+  /// bed starts keep the first quarter: later in such a clip the character stands beside the
+  /// bed, above the floor.
+  double reference_max_fraction = 0.25;
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -33,6 +40,7 @@ struct GetUpParams {
     a->Visit(MakeNameValue("getup_standing_head_height", &standing_head_height));
     a->Visit(MakeNameValue("getup_standing_pelvis_height", &standing_pelvis_height));
     a->Visit(MakeNameValue("getup_bed_raise", &bed_raise));
+    a->Visit(MakeNameValue("getup_reference_max_fraction", &reference_max_fraction));
   }
   /// Checks ranges.
   void Validate() const;
