@@ -211,6 +211,92 @@ MotionClip SitDown(const FurnitureSpec& seat, double lean, double t_sit, double 
   return Build(keys, noise, std::move(meta), fps, {seat});
 }
 
+// How far a rise from a seat draws the feet back behind the knees first (m), at most. With the
+// shins upright (the seated key) the hips are ~0.4 m behind the ankles and the centre of mass
+// stays behind the heels whatever the trunk lean; people tuck their feet under the seat before
+// they stand, so the body can pass over them. The calves must stay in front of the seat's
+// front face (kRiseCalfClearance behind the ankle), which limits the tuck of deep seats.
+constexpr double kRiseFootTuck = 0.16;
+constexpr double kRiseCalfClearance = 0.1;
+
+// Rising from a seat (forward in time, not a reversed sit-down): seated with the feet tucked
+// back, the trunk pitches forward over the knees while the pelvis still rests on the seat, the
+// pelvis leaves the seat once the centre of mass is over the feet, then hips and knees extend
+// to standing above the tucked feet. `lean` scales the trunk lean, `t_rise` is the time from
+// the first lean to standing, `hold` the seated time before it.
+// Elbows back along the body rather than out to the sides, so the forearms pass inside a
+// chair's armrests.
+void TuckElbows(BodyKey* k) {
+  k->limbs[0].hint = Eigen::Vector3d(-1, -0.3, -0.3);
+  k->limbs[1].hint = Eigen::Vector3d(-1, 0.3, -0.3);
+}
+
+MotionClip RiseFromSeat(const FurnitureSpec& seat, double lean, double t_rise, double hold,
+                        MotionMeta meta, double fps, uint64_t seed) {
+  const double h = Skel().standing_root_height();
+  const double d = std::clamp(-seat.front_x - kRiseCalfClearance, 0.0, kRiseFootTuck);
+  const auto tuck = [d](BodyKey* k) {
+    for (int leg = 2; leg < 4; ++leg) k->limbs[leg].target.x() -= d;
+  };
+  BodyKey seated = SeatedKey(seat, 0.0);
+  tuck(&seated);
+  {
+    const SkeletonPose sp = PoseOf(seated);
+    HandsTo(&seated, OnThigh(sp, false, 0.65), OnThigh(sp, true, 0.65));
+  }
+  const Eigen::Vector3d hip = seated.pelvis;
+  std::vector<BodyKey> keys;
+  keys.push_back(seated);
+  keys.push_back(At(seated, hold, true));
+  // Flexion: trunk forward over the knees, pelvis still on the seat.
+  BodyKey flex = seated;
+  flex.t = hold + 0.35 * t_rise;
+  flex.hold = false;
+  flex.pelvis = hip + Eigen::Vector3d(0.03, 0, 0);
+  flex.pitch = Deg(32 * lean);
+  flex.dofs[kAbdY] = Deg(8 * lean);
+  flex.dofs[kNeckY] = -Deg(30 * lean);
+  // The hands stay on the thighs, sliding toward the knees (inside any armrests: arms swung
+  // forward land on them and hold the body down).
+  {
+    const SkeletonPose sp = PoseOf(flex);
+    HandsTo(&flex, OnThigh(sp, false, 0.8), OnThigh(sp, true, 0.8));
+    TuckElbows(&flex);
+  }
+  keys.push_back(flex);
+  // Seat-off: the pelvis lifts and comes forward over the feet, the trunk at its deepest lean.
+  BodyKey off = flex;
+  off.t = hold + 0.55 * t_rise;
+  off.pelvis = Eigen::Vector3d(hip.x() + 0.24 - d, 0, hip.z() + 0.07);
+  off.pitch = Deg(33 * lean);
+  {
+    const SkeletonPose sp = PoseOf(off);
+    HandsTo(&off, OnThigh(sp, false, 0.8), OnThigh(sp, true, 0.8));
+    TuckElbows(&off);
+  }
+  keys.push_back(off);
+  // Extension: hips and knees straighten, the trunk comes up.
+  BodyKey rise = off;
+  rise.t = hold + 0.8 * t_rise;
+  rise.pelvis = Eigen::Vector3d(-d - 0.08, 0, h - 0.2);
+  rise.pitch = Deg(26 * lean);
+  rise.dofs[kAbdY] = Deg(6 * lean);
+  rise.dofs[kNeckY] = -Deg(15 * lean);
+  rise.dofs[kRShY] = rise.dofs[kLShY] = -Deg(15);
+  rise.dofs[kRElbow] = rise.dofs[kLElbow] = -Deg(20);
+  rise.limbs[0].weight = rise.limbs[1].weight = 0;
+  keys.push_back(rise);
+  BodyKey stand = StandingKey(hold + t_rise, 0.1);
+  tuck(&stand);
+  stand.pelvis.x() -= d;
+  keys.push_back(stand);
+  keys.push_back(At(stand, stand.t + 0.6, true));
+  IdleNoise noise;
+  noise.seed = seed;
+  noise.look = Deg(4);
+  return Build(keys, noise, std::move(meta), fps, {seat});
+}
+
 // Supine / side lying on a bed whose long axis is world y; head toward +y.
 FurnitureSpec BedFor(double height) {
   FurnitureSpec bed = PlaceSeat(height, 1.0, 2.2);
@@ -1077,9 +1163,8 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
                                 Meta(r.sit, "sit", v, {}), fps, rng.NextU64()));
         }
         if (wanted("getup")) {
-          MotionClip down = SitDown(seat, r.getup.lean, r.getup.sit_time, r.getup.hold,
-                                    MotionMeta{}, fps, rng.NextU64());
-          out.push_back(Reversed(down, Meta(r.getup, "getup", v, {})));
+          out.push_back(RiseFromSeat(seat, r.getup.lean, r.getup.sit_time, r.getup.hold,
+                                     Meta(r.getup, "getup", v, {}), fps, rng.NextU64()));
         }
       }
     }
