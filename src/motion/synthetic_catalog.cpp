@@ -87,13 +87,6 @@ WalkSpec ApproachSpec(const WalkStyle& gait, bool turn_round) {
   return s;
 }
 
-MotionClip Reversed(const MotionClip& c, MotionMeta meta) {
-  std::vector<MotionFrame> f = c.frames();
-  std::reverse(f.begin(), f.end());
-  meta.params = c.meta().params;
-  return MotionClip(c.fps(), std::move(f), std::move(meta));
-}
-
 // ---------------------------------------------------------------------------------------
 // Key shapes shared by the recipes.
 
@@ -219,11 +212,11 @@ MotionClip SitDown(const FurnitureSpec& seat, double lean, double t_sit, double 
 constexpr double kRiseFootTuck = 0.16;
 constexpr double kRiseCalfClearance = 0.1;
 
-// Rising from a seat (forward in time, not a reversed sit-down): seated with the feet tucked
-// back, the trunk pitches forward over the knees while the pelvis still rests on the seat, the
-// pelvis leaves the seat once the centre of mass is over the feet, then hips and knees extend
-// to standing above the tucked feet. `lean` scales the trunk lean, `t_rise` is the time from
-// the first lean to standing, `hold` the seated time before it.
+// Keys of a rise from a seat (forward in time, not a reversed sit-down): seated with the feet
+// tucked back, the trunk pitches forward over the knees while the pelvis still rests on the
+// seat, the pelvis leaves the seat once the centre of mass is over the feet, then hips and
+// knees extend to standing above the tucked feet. `lean` scales the trunk lean, `t_rise` is the
+// time from the first lean to standing, `hold` the seated time before it (the first key, at 0).
 // Elbows back along the body rather than out to the sides, so the forearms pass inside a
 // chair's armrests.
 void TuckElbows(BodyKey* k) {
@@ -231,8 +224,8 @@ void TuckElbows(BodyKey* k) {
   k->limbs[1].hint = Eigen::Vector3d(-1, 0.3, -0.3);
 }
 
-MotionClip RiseFromSeat(const FurnitureSpec& seat, double lean, double t_rise, double hold,
-                        MotionMeta meta, double fps, uint64_t seed) {
+std::vector<BodyKey> RiseKeys(const FurnitureSpec& seat, double lean, double t_rise,
+                              double hold) {
   const double h = Skel().standing_root_height();
   const double d = std::clamp(-seat.front_x - kRiseCalfClearance, 0.0, kRiseFootTuck);
   const auto tuck = [d](BodyKey* k) {
@@ -291,10 +284,16 @@ MotionClip RiseFromSeat(const FurnitureSpec& seat, double lean, double t_rise, d
   stand.pelvis.x() -= d;
   keys.push_back(stand);
   keys.push_back(At(stand, stand.t + 0.6, true));
+  return keys;
+}
+
+// A rise from a seat as a clip (RiseKeys).
+MotionClip RiseFromSeat(const FurnitureSpec& seat, double lean, double t_rise, double hold,
+                        MotionMeta meta, double fps, uint64_t seed) {
   IdleNoise noise;
   noise.seed = seed;
   noise.look = Deg(4);
-  return Build(keys, noise, std::move(meta), fps, {seat});
+  return Build(RiseKeys(seat, lean, t_rise, hold), noise, std::move(meta), fps, {seat});
 }
 
 // Supine / side lying on a bed whose long axis is world y; head toward +y.
@@ -382,6 +381,31 @@ std::vector<BodyKey> LieDownKeys(const FurnitureSpec& bed) {
   }
   keys.push_back(swing);
   keys.push_back(supine);
+  return keys;
+}
+
+// Rising from lying on a bed: the lie-down's lying part played backwards (supine, legs swung
+// over the edge, sitting up on the edge), then a rise from the edge as from a seat (RiseKeys),
+// so the way up balances over the feet as the seat get-ups do.
+constexpr double kBedRiseLean = 1.0;  // trunk lean scale of the rise from the edge
+constexpr double kBedRiseTime = 1.9;  // s from the first lean to standing
+constexpr double kBedSitHold = 0.3;   // s seated on the edge before the rise
+
+std::vector<BodyKey> GetUpFromBedKeys(const FurnitureSpec& bed) {
+  const std::vector<BodyKey> down = LieDownKeys(bed);
+  // down = stand, stand, bend, land, seated, back, swing, supine: keep the lying part.
+  const std::vector<BodyKey> lying(down.end() - 4, down.end());
+  const double t_seated = lying.back().t - lying.front().t;
+  std::vector<BodyKey> keys;
+  for (auto it = lying.rbegin(); it + 1 != lying.rend(); ++it) {
+    BodyKey k = *it;
+    k.t = lying.back().t - it->t;
+    keys.push_back(k);
+  }
+  for (BodyKey k : RiseKeys(bed, kBedRiseLean, kBedRiseTime, kBedSitHold)) {
+    k.t += t_seated;
+    keys.push_back(k);
+  }
   return keys;
 }
 
@@ -1204,11 +1228,10 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
         out.push_back(Build(keys, n, Meta(beds.lie_down, "lie", v, beds.furniture), fps, {bed}));
       }
       if (wanted("getup")) {
-        std::vector<BodyKey> keys = LieDownKeys(bed);
         IdleNoise n;
         n.seed = rng.NextU64();
-        MotionClip down = Build(keys, n, MotionMeta{}, fps, {bed});
-        out.push_back(Reversed(down, Meta(beds.getup, "getup", v, beds.furniture)));
+        out.push_back(Build(GetUpFromBedKeys(bed), n, Meta(beds.getup, "getup", v, beds.furniture),
+                            fps, {bed}));
       }
     }
   }
@@ -1336,10 +1359,9 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
     if (wanted("getup")) {
       IdleNoise n;
       n.seed = rng.NextU64();
-      MotionClip down = Build(LieDownKeys(bed), n, MotionMeta{}, fps, {bed});
       MotionMeta meta = Meta(beds.getup, "getup", 0, beds.furniture);
       meta.name += suffix;
-      out.push_back(Reversed(down, meta));
+      out.push_back(Build(GetUpFromBedKeys(bed), n, meta, fps, {bed}));
     }
   }
   return out;
