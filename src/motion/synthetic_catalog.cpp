@@ -217,9 +217,12 @@ constexpr double kRiseCalfClearance = 0.1;
 // seat, the pelvis leaves the seat once the centre of mass is over the feet, then hips and
 // knees extend to standing above the tucked feet. `lean` scales the trunk lean, `t_rise` is the
 // time from the first lean to standing, `hold` the seated time before it (the first key, at 0).
-// Elbows back along the body rather than out to the sides, so the forearms pass inside a
-// chair's armrests.
-void TuckElbows(BodyKey* k) {
+// The hands on the thighs near the knees, elbows back along the body rather than out to the
+// sides: the forearms pass inside a chair's armrests (arms swung forward or out land on them
+// and hold the body down).
+void HandsNearKnees(BodyKey* k) {
+  const SkeletonPose sp = PoseOf(*k);
+  HandsTo(k, OnThigh(sp, false, 0.8), OnThigh(sp, true, 0.8));
   k->limbs[0].hint = Eigen::Vector3d(-1, -0.3, -0.3);
   k->limbs[1].hint = Eigen::Vector3d(-1, 0.3, -0.3);
 }
@@ -249,24 +252,14 @@ std::vector<BodyKey> RiseKeys(const FurnitureSpec& seat, double lean, double t_r
   flex.pitch = Deg(32 * lean);
   flex.dofs[kAbdY] = Deg(8 * lean);
   flex.dofs[kNeckY] = -Deg(30 * lean);
-  // The hands stay on the thighs, sliding toward the knees (inside any armrests: arms swung
-  // forward land on them and hold the body down).
-  {
-    const SkeletonPose sp = PoseOf(flex);
-    HandsTo(&flex, OnThigh(sp, false, 0.8), OnThigh(sp, true, 0.8));
-    TuckElbows(&flex);
-  }
+  HandsNearKnees(&flex);
   keys.push_back(flex);
   // Seat-off: the pelvis lifts and comes forward over the feet, the trunk at its deepest lean.
   BodyKey off = flex;
   off.t = hold + 0.55 * t_rise;
   off.pelvis = Eigen::Vector3d(hip.x() + 0.24 - d, 0, hip.z() + 0.07);
   off.pitch = Deg(33 * lean);
-  {
-    const SkeletonPose sp = PoseOf(off);
-    HandsTo(&off, OnThigh(sp, false, 0.8), OnThigh(sp, true, 0.8));
-    TuckElbows(&off);
-  }
+  HandsNearKnees(&off);
   keys.push_back(off);
   // Extension: hips and knees straighten, the trunk comes up.
   BodyKey rise = off;

@@ -267,9 +267,8 @@ Eigen::Vector3d CentreOfMass(const humanoid::Humanoid& h, mjData* d, const Motio
   p.root_pos = f.root_pos;
   p.root_rot = f.root_rot;
   p.dof_pos = f.dof_pos;
-  humanoid::WritePose(h, p, d);
-  mj_kinematics(h.model(), d);
-  mj_comPos(h.model(), d);
+  humanoid::BodyStates bodies;
+  humanoid::ForwardKinematics(h, p, d, &bodies);
   const double* c = d->subtree_com + 3 * h.model()->body_rootid[1];
   return Eigen::Vector3d(c[0], c[1], c[2]);
 }
