@@ -227,8 +227,7 @@ void HandsNearKnees(BodyKey* k) {
   k->limbs[1].hint = Eigen::Vector3d(-1, 0.3, -0.3);
 }
 
-std::vector<BodyKey> RiseKeys(const FurnitureSpec& seat, double lean, double t_rise,
-                              double hold) {
+std::vector<BodyKey> RiseKeys(const FurnitureSpec& seat, double lean, double t_rise, double hold) {
   const double h = Skel().standing_root_height();
   const double d = std::clamp(-seat.front_x - kRiseCalfClearance, 0.0, kRiseFootTuck);
   const auto tuck = [d](BodyKey* k) {

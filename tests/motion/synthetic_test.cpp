@@ -286,8 +286,8 @@ TEST(SyntheticTest, GetUpFromFurnitureBalancesOverTheFeet) {
   humanoid::MjDataPtr d = humanoid::MakeData(h->model());
   int checked = 0;
   for (const char* furniture : {"chair", "sofa", "stool", "bed"}) {
-    for (const std::string& name : {std::string("getup_from_") + furniture,
-                                   std::string("getup_from_") + furniture + "_v1"}) {
+    for (const std::string& name :
+         {std::string("getup_from_") + furniture, std::string("getup_from_") + furniture + "_v1"}) {
       SCOPED_TRACE(name);
       const MotionClip& c = ByName(name);
       const double seated = c.meta().params.at("furniture_height") + 0.13;
