@@ -212,11 +212,6 @@ MotionClip SitDown(const FurnitureSpec& seat, double lean, double t_sit, double 
 constexpr double kRiseFootTuck = 0.16;
 constexpr double kRiseCalfClearance = 0.1;
 
-// Keys of a rise from a seat (forward in time, not a reversed sit-down): seated with the feet
-// tucked back, the trunk pitches forward over the knees while the pelvis still rests on the
-// seat, the pelvis leaves the seat once the centre of mass is over the feet, then hips and
-// knees extend to standing above the tucked feet. `lean` scales the trunk lean, `t_rise` is the
-// time from the first lean to standing, `hold` the seated time before it (the first key, at 0).
 // The hands on the thighs near the knees, elbows back along the body rather than out to the
 // sides: the forearms pass inside a chair's armrests (arms swung forward or out land on them
 // and hold the body down).
@@ -227,6 +222,11 @@ void HandsNearKnees(BodyKey* k) {
   k->limbs[1].hint = Eigen::Vector3d(-1, 0.3, -0.3);
 }
 
+// Keys of a rise from a seat (forward in time, not a reversed sit-down): seated with the feet
+// tucked back, the trunk pitches forward over the knees while the pelvis still rests on the
+// seat, the pelvis leaves the seat once the centre of mass is over the feet, then hips and
+// knees extend to standing above the tucked feet. `lean` scales the trunk lean, `t_rise` is the
+// time from the first lean to standing, `hold` the seated time before it (the first key, at 0).
 std::vector<BodyKey> RiseKeys(const FurnitureSpec& seat, double lean, double t_rise, double hold) {
   const double h = Skel().standing_root_height();
   const double d = std::clamp(-seat.front_x - kRiseCalfClearance, 0.0, kRiseFootTuck);
