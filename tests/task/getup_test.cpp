@@ -257,17 +257,28 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
   EXPECT_NEAR(GetUpSkill::RiseReward(up, {0, 0}, head), 1.0, 1e-12);
   // Half up: each term by hand.
   Rise half{0.49, 1.0, 0.5, 0.2, {0.5, 0}};
-  EXPECT_NEAR(GetUpSkill::RiseReward(half, {0, 0}, head),
-              0.3 * std::exp(-10 * 0.16) + 0.3 * std::exp(-4 * 0.25) + 0.1 * 0.5 + 0.15 * 0.2 +
-                  0.15 * std::exp(-0.5),
-              1e-9);
-  // Upside down at full height: the up terms pay nothing.
+  EXPECT_NEAR(
+      GetUpSkill::RiseReward(half, {0, 0}, head),
+      (0.6 + 0.2 * 0.5 + 0.2 * 0.2) * (0.4 * std::exp(-20 * 0.16) + 0.3 * std::exp(-8 * 0.25) +
+                                       0.15 * std::exp(-2 * 0.25)) +
+          0.15 * std::exp(-0.5),
+      1e-9);
+  // Upside down at full height: the up factor stays at its floor.
   Rise flipped{1.0, 1.6, -1.0, -1.0, {0, 0}};
-  EXPECT_NEAR(GetUpSkill::RiseReward(flipped, {0, 0}, head), 0.75, 1e-12);
+  EXPECT_NEAR(GetUpSkill::RiseReward(flipped, {0, 0}, head), 0.6 * 0.85 + 0.15, 1e-12);
   // The crouch the first campaign settled in (pelvis 0.68 m, torso folded, head at 0.66 m)
   // earns well under half of standing.
   Rise crouch{0.68, 0.66, 0.6, 0.2, {0, 0}};
-  EXPECT_LT(GetUpSkill::RiseReward(crouch, {0, 0}, head), 0.5);
+  EXPECT_LT(GetUpSkill::RiseReward(crouch, {0, 0}, head), 0.35);
+  // Sitting upright 0.7 m from the stand point (pelvis 0.5 m, head 1.1 m) earns about a
+  // quarter: the step reward of sitting still is ~0.4 of standing's, so rising pays.
+  Rise seated{0.5, 1.1, 1.0, 1.0, {0.7, 0}};
+  const double seated_rise = GetUpSkill::RiseReward(seated, {0, 0}, head);
+  EXPECT_NEAR(seated_rise,
+              0.4 * std::exp(-20 * 0.39 * 0.39) + 0.3 * std::exp(-8 * 0.16) +
+                  0.15 * std::exp(-2 * 0.16) + 0.15 * std::exp(-2 * 0.49),
+              1e-9);
+  EXPECT_LT(kFeetPhaseWeight + (1 - kFeetPhaseWeight) * seated_rise, 0.45);
 
   SkillConfig c = GetUpConfig();
   c.reference_init_prob = 0;
@@ -281,13 +292,16 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
   auto r = getup->Step(ViewOf(*s.env, 0));
   EXPECT_EQ(getup->phase(0), GetUpSkill::kRisePhase);
   EXPECT_TRUE(r.success);
-  // Feet-phase reward: half the contact reward with the feet's disk targets.
-  EXPECT_LE(r.reward, 0.5 + 1e-6);
+  // Feet-phase reward: at most kFeetPhaseWeight (the contact reward with the feet's disk
+  // targets, scaled).
+  EXPECT_LE(r.reward, kFeetPhaseWeight + 1e-6);
   r = getup->Step(ViewOf(*s.env, 0));
-  EXPECT_NEAR(r.reward,
-              0.5 + 0.5 * GetUpSkill::RiseReward(GetUpSkill::RiseInputsOf(s.env->bodies(0)), stand,
-                                                 getup->default_head_height()),
-              1e-5);
+  EXPECT_NEAR(
+      r.reward,
+      kFeetPhaseWeight + (1 - kFeetPhaseWeight) *
+                             GetUpSkill::RiseReward(GetUpSkill::RiseInputsOf(s.env->bodies(0)),
+                                                    stand, getup->default_head_height()),
+      1e-5);
   EXPECT_TRUE(r.truncate);
   EXPECT_EQ(getup->goal_mask(0), 1u << humanoid::kCjPelvis);
 }

@@ -183,9 +183,10 @@ double GetUpSkill::RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand,
                               double head_height) {
   const double dp = std::max(humanoid::kDefaultRootHeight - x.pelvis_z, 0.0);
   const double dh = std::max(head_height - x.head_z, 0.0);
-  return 0.3 * std::exp(-10.0 * dp * dp) + 0.3 * std::exp(-4.0 * dh * dh) +
-         0.1 * std::max(x.pelvis_up, 0.0) + 0.15 * std::max(x.torso_up, 0.0) +
-         0.15 * std::exp(-2.0 * (stand - x.pelvis_xy).squaredNorm());
+  const double height = 0.4 * std::exp(-20.0 * dp * dp) + 0.3 * std::exp(-8.0 * dh * dh) +
+                        0.15 * std::exp(-2.0 * dh * dh);
+  const double upright = 0.6 + 0.2 * std::max(x.pelvis_up, 0.0) + 0.2 * std::max(x.torso_up, 0.0);
+  return upright * height + 0.15 * std::exp(-2.0 * (stand - x.pelvis_xy).squaredNorm());
 }
 
 Eigen::Vector3d GetUpSkill::FootTarget(const Eigen::Vector2d& stand,
@@ -316,13 +317,15 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
   SetGetUpGoals(i, b, &sq, &mx);
   double r = 0;
   if (getup_[i].phase == kFeetPhase) {
-    r = 0.5 * ContactReward(getup_[i].stand, root, vel, facing, config_.target_speed, sq);
+    r = kFeetPhaseWeight *
+        ContactReward(getup_[i].stand, root, vel, facing, config_.target_speed, sq);
     if (mx < config_.object.contact_success_threshold) {
       getup_[i].phase = kRisePhase;
       SetGetUpGoals(i, b, &sq, &mx);
     }
   } else {
-    r = 0.5 + 0.5 * RiseReward(RiseInputsOf(b), getup_[i].stand, head_height_);
+    r = kFeetPhaseWeight +
+        (1.0 - kFeetPhaseWeight) * RiseReward(RiseInputsOf(b), getup_[i].stand, head_height_);
   }
   env_[i].error =
       std::max(config_.getup.standing_pelvis_height - b.pos[humanoid::kPelvis].z(), 0.0);

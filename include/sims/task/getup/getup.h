@@ -16,16 +16,20 @@
 // Goal and reward (in [0, 1]):
 //   feet phase: the contact goal is both feet on the floor disk of kStandDiskRadius around the
 //     stand point s (the object's free floor point nearest to the pelvis; the start point on
-//     the floor); r = 0.5·contact reward (contact_reward.h) with anchor s and g_j the nearest
-//     disk points of the feet. The phase ends when both feet are within
+//     the floor); r = w·contact reward (contact_reward.h, w = kFeetPhaseWeight) with anchor s
+//     and g_j the nearest disk points of the feet. The phase ends when both feet are within
 //     contact_success_threshold of the disk.
-//   rise phase: r = 0.5 + 0.5·RiseReward, RiseReward = 0.3·exp(−10·max(h*_p − z_pelvis, 0)²)
-//     + 0.3·exp(−4·max(h*_h − z_head, 0)²) + 0.1·max(up_pelvis, 0) + 0.15·max(up_torso, 0)
-//     + 0.15·exp(−2·‖s − x_pelvis‖²); h*_p, h*_h the standing pelvis and head heights, up the
-//     bodies' up axes (z components). The head and torso terms are there because a pelvis-only
-//     reward had a stable half-way optimum: pelvis at 0.68 m with the torso folded forward and
-//     the head at pelvis height (iterations 1–1525 of the first campaign, 0 % success). The
-//     wider head kernel keeps a gradient from a lying head.
+//   rise phase: r = w + (1 − w)·RiseReward, RiseReward = U·H + 0.15·exp(−2·‖s − x_pelvis‖²),
+//     H = 0.4·exp(−20·dp²) + 0.3·exp(−8·dh²) + 0.15·exp(−2·dh²), dp = max(h*_p − z_pelvis, 0),
+//     dh = max(h*_h − z_head, 0), U = 0.6 + 0.2·max(up_pelvis, 0) + 0.2·max(up_torso, 0);
+//     h*_p, h*_h the standing pelvis and head heights, up the bodies' up axes (z components).
+//     History: a pelvis-only reward had a stable half-way optimum (pelvis at 0.68 m, torso
+//     folded, head at pelvis height; first campaign, 0 % success), hence the head and
+//     upright factors. The next form (0.5 + 0.5·(0.3·exp(−10·dp²) + 0.3·exp(−4·dh²) + up and
+//     stand terms)) paid 0.77 for sitting still and 0.83 for a crouch against 1.0 for
+//     standing, while a failed rise ends the episode: the policy rose to a crouch or fell
+//     forward, 0/100 in evaluation (chunk 4). Now sitting pays ~0.4 and the crouch ~0.55,
+//     and the wide head kernel still grades a lying head.
 // The observation always carries the pelvis goal (s at standing height), plus the feet goals
 // in the feet phase. Success (StandingClear): standing upright (pelvis and head high enough,
 // pelvis and torso up axes within ~37° of vertical) with nothing but the feet touching
@@ -42,6 +46,9 @@ namespace sims::task {
 
 /// Radius of the floor disk the feet must reach (m).
 inline constexpr double kStandDiskRadius = 0.3;
+/// Largest feet-phase reward and smallest rise-phase reward: finishing the feet phase never
+/// lowers the reward.
+inline constexpr double kFeetPhaseWeight = 0.2;
 /// Contacts above this height are not on the floor (m).
 inline constexpr double kFloorContactHeight = 0.05;
 
