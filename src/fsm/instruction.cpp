@@ -5,10 +5,10 @@
 
 #include "sims/core/error.h"
 #include "sims/core/skill_vocabulary.h"
-#include "sims/fsm/navigation.h"
 #include "sims/humanoid/humanoid.h"
 #include "sims/planner/sentence.h"
 #include "sims/scene/contact_targets.h"
+#include "sims/scene/navigation.h"
 
 namespace sims::fsm {
 
@@ -67,7 +67,7 @@ std::vector<Instruction> BuildInstructions(const planner::Plan& plan, const scen
         // A stand point the body fits at with its arms swinging (the navigation's clearance),
         // else the tightest one the scene offers.
         scene::StandPointOptions roomy;
-        roomy.clearance_radius = NavigationConfig{}.clearance;
+        roomy.clearance_radius = scene::NavigationConfig{}.clearance;
         auto stands = scene::StandPoints(scene, caster, obj, roomy);
         if (stands.empty()) stands = scene::StandPoints(scene, caster, obj);
         if (!stands.empty()) {

@@ -89,6 +89,7 @@ LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& f
                     "a policy trained for '" + skill + "'", "'" + trained + "'");
   // A story never resamples targets or loads clips: the FSM sets every goal.
   p.skill_config.walk.resample_target_on_success = false;
+  p.skill_config.walk.rooms = 0;  // the story places the character, in its own scene
   p.skill_config.motion.manifest.clear();
   p.skill_config.skill = skill;
   return p;
@@ -121,7 +122,7 @@ struct StoryRunner::Impl {
   std::map<std::string, LoadedPolicy> policies;
   std::map<std::string, std::shared_ptr<task::Skill>> skills;
   std::map<std::string, std::string> skill_errors;  // why a skill could not be built here
-  std::unique_ptr<FreeSpaceGrid> free_space;
+  std::unique_ptr<scene::FreeSpaceGrid> free_space;
   std::shared_ptr<StoryTask> task;
   std::unique_ptr<sim::BatchedEnv> env;
   std::vector<float> action;
@@ -138,7 +139,7 @@ struct StoryRunner::Impl {
     task::Skill* skill = nullptr;
     double timeout = 0;
     task::InstructionTarget target;
-    std::optional<PathFollower> follower;
+    std::optional<scene::PathFollower> follower;
     bool last_stretch = true;  // success counts only once the carrot is the goal itself
     int hold_needed = 1;
     double start = 0;
@@ -240,8 +241,9 @@ struct StoryRunner::Impl {
       waypoints = free_space->Waypoints(env->pose(0).root_pos.head<2>(), a->target.point.head<2>());
       if (waypoints.empty()) waypoints = {a->target.point.head<2>()};  // no path: head straight
       // A detour around walls takes longer than a walk across the room.
-      a->timeout += options.walk_seconds_per_m *
-                    std::max(0.0, PathLength(env->pose(0).root_pos.head<2>(), waypoints) - 5.0);
+      a->timeout +=
+          options.walk_seconds_per_m *
+          std::max(0.0, scene::PathLength(env->pose(0).root_pos.head<2>(), waypoints) - 5.0);
       std::string wp_text;
       for (const auto& w : waypoints) wp_text += fmt::format(" ({:.2f}, {:.2f})", w.x(), w.y());
       spdlog::debug("{}walk from ({:.2f}, {:.2f}) via{}", run.log_prefix, env->pose(0).root_pos.x(),
@@ -499,7 +501,7 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
       *m.scene, *m.context.ray_caster, scene::HeightGridConfig{});
   m.context.num_envs = 1;
   m.free_space =
-      std::make_unique<FreeSpaceGrid>(*m.scene, *m.context.height_grid, options.navigation);
+      std::make_unique<scene::FreeSpaceGrid>(*m.scene, *m.context.height_grid, options.navigation);
   sim::EnvConfig env_config;
   std::shared_ptr<task::Skill> layout;
   int obs_dim = -1;
@@ -596,7 +598,7 @@ Eigen::Vector3d StoryRunner::DefaultStart(const std::vector<Instruction>& instru
         if (!m.free_space->Free(p)) continue;
         // A short detour at most: a start behind a wall would open the story with a long walk.
         const auto path = m.free_space->Waypoints(p, goal);
-        if (!path.empty() && PathLength(p, path) < 1.5 * r) return {p.x(), p.y(), 0};
+        if (!path.empty() && scene::PathLength(p, path) < 1.5 * r) return {p.x(), p.y(), 0};
       }
     if (m.free_space->Free(goal)) return {goal.x(), goal.y(), 0};
   }

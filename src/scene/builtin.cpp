@@ -555,6 +555,75 @@ Scene BuiltinHouse() {
   return s;
 }
 
+Scene RandomRooms(int count, Rng& rng, bool held_out) {
+  SIMS_CHECK(count >= 1);
+  static const std::vector<std::string> kCategories = {"bed",      "sofa",  "armchair", "chair",
+                                                       "table",    "desk",  "shelf",    "cabinet",
+                                                       "wardrobe", "stool", "lamp"};
+  // Pieces keep this much free floor between them and from the walls' inner faces (m).
+  constexpr double kGap = 0.05;
+  // At most this share of a room's floor is furniture, so the free floor stays connected.
+  constexpr double kMaxCover = 0.35;
+  constexpr double kPitch = kRoomSize + 1.0;
+  Scene s;
+  s.name = held_out ? "random_rooms_held_out" : "random_rooms";
+  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
+  for (int k = 0; k < count; ++k) {
+    const RoomFrame f{(k % side) * kPitch, (k / side) * kPitch};
+    const std::string id = "room_" + std::to_string(k);
+    s.rooms.push_back(MakeRoom(id, "room", f));
+    const double lo = kWallThickness / 2 + kGap, hi = kRoomSize - lo;
+    std::vector<Aabb> placed;
+    double cover = 0;
+    const int pieces = 4 + static_cast<int>(rng.UniformInt(4));
+    for (int p = 0; p < pieces; ++p) {
+      const std::string& cat =
+          kCategories[rng.UniformInt(static_cast<int64_t>(kCategories.size()))];
+      const Object piece = RandomFurniture(cat, rng, held_out, id + "_" + std::to_string(p));
+      const Aabb local = piece.LocalBounds();
+      const double depth = local.max.x() - local.min.x(), width = local.max.y() - local.min.y();
+      if (cover + depth * width > kMaxCover * kRoomSize * kRoomSize) continue;
+      for (int attempt = 0; attempt < 20; ++attempt) {
+        double x, y, yaw;
+        if (rng.Bernoulli(0.6)) {
+          // Against a wall, its front (+x) facing into the room.
+          const int wall = static_cast<int>(rng.UniformInt(4));
+          const double along = rng.Uniform(lo + width / 2, hi - width / 2);
+          const double off = lo + depth / 2;
+          const double walls[4][3] = {{along, off, 90},
+                                      {along, kRoomSize - off, -90},
+                                      {off, along, 0},
+                                      {kRoomSize - off, along, 180}};
+          x = walls[wall][0], y = walls[wall][1], yaw = walls[wall][2] * kDeg;
+        } else {
+          x = rng.Uniform(1.0, kRoomSize - 1.0);
+          y = rng.Uniform(1.0, kRoomSize - 1.0);
+          yaw = static_cast<double>(rng.UniformInt(4)) * M_PI / 2 + rng.Uniform(-0.25, 0.25);
+        }
+        Object o = piece;
+        PlaceObject(&o, f.x0 + x, f.y0 + y, yaw);
+        const Aabb b = o.Bounds();
+        bool fits = b.min.x() >= f.x0 + lo && b.max.x() <= f.x0 + hi && b.min.y() >= f.y0 + lo &&
+                    b.max.y() <= f.y0 + hi;
+        for (const Aabb& q : placed)
+          fits = fits && (b.min.x() > q.max.x() + kGap || q.min.x() > b.max.x() + kGap ||
+                          b.min.y() > q.max.y() + kGap || q.min.y() > b.max.y() + kGap);
+        if (!fits) continue;
+        placed.push_back(b);
+        cover += depth * width;
+        o.room = id;
+        s.AddObject(std::move(o));
+        break;
+      }
+    }
+    AddWall(&s, f.x0, f.y0, f.x0 + kRoomSize, f.y0);
+    AddWall(&s, f.x0, f.y0 + kRoomSize, f.x0 + kRoomSize, f.y0 + kRoomSize);
+    AddWall(&s, f.x0, f.y0, f.x0, f.y0 + kRoomSize);
+    AddWall(&s, f.x0 + kRoomSize, f.y0, f.x0 + kRoomSize, f.y0 + kRoomSize);
+  }
+  return s;
+}
+
 std::vector<std::string> BuiltinSceneNames() {
   std::vector<std::string> names = {"house", "empty"};
   for (const auto& spec : RoomSpecs()) names.push_back(spec.name);

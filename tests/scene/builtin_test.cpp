@@ -1,6 +1,7 @@
 #include "sims/scene/builtin.h"
 
 #include <deque>
+#include <map>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -123,6 +124,52 @@ TEST(BuiltinTest, RoomsAreFurnishedWalledAndNotOverlapping) {
     }
   }
   EXPECT_EQ(types, (std::set<std::string>{"bedroom", "living room", "dining room", "library"}));
+}
+
+// Random rooms: walled, each piece inside its own room, no two pieces overlapping, the same
+// seed giving the same rooms, and held-out rooms built from held-out dimensions.
+TEST(BuiltinTest, RandomRoomsAreFurnishedWalledAndNotOverlapping) {
+  Rng rng(5);
+  const Scene s = RandomRooms(4, rng, false);
+  ASSERT_EQ(s.rooms.size(), 4u);
+  EXPECT_FALSE(s.walls.empty());
+  std::map<std::string, int> pieces;
+  for (const Room& r : s.rooms) pieces[r.id] = 0;
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const Object& o = s.objects[i];
+    ASSERT_TRUE(pieces.count(o.room)) << o.instance;
+    ++pieces[o.room];
+    const Room& room = *std::find_if(s.rooms.begin(), s.rooms.end(),
+                                     [&](const Room& r) { return r.id == o.room; });
+    const Eigen::Vector2d lo = room.floor_polygon[0], hi = room.floor_polygon[2];
+    const Aabb a = o.Bounds();
+    EXPECT_GE(a.min.x(), lo.x() + 0.05 - 1e-9) << o.instance;
+    EXPECT_GE(a.min.y(), lo.y() + 0.05 - 1e-9) << o.instance;
+    EXPECT_LE(a.max.x(), hi.x() - 0.05 + 1e-9) << o.instance;
+    EXPECT_LE(a.max.y(), hi.y() - 0.05 + 1e-9) << o.instance;
+    for (std::size_t j = i + 1; j < s.objects.size(); ++j) {
+      const Aabb b = s.objects[j].Bounds();
+      const Eigen::Vector3d overlap = a.max.cwiseMin(b.max) - a.min.cwiseMax(b.min);
+      EXPECT_TRUE((overlap.array() <= 1e-9).any())
+          << o.instance << " overlaps " << s.objects[j].instance;
+    }
+  }
+  for (const auto& [id, n] : pieces) {
+    EXPECT_GE(n, 2) << id;
+    EXPECT_LE(n, 7) << id;
+  }
+  Rng same(5);
+  const Scene again = RandomRooms(4, same, false);
+  ASSERT_EQ(again.objects.size(), s.objects.size());
+  for (std::size_t i = 0; i < s.objects.size(); ++i)
+    EXPECT_TRUE(again.objects[i].X_WO.isApprox(s.objects[i].X_WO));
+  Rng held(5);
+  const Scene test = RandomRooms(4, held, true);
+  EXPECT_NE(test.name, s.name);
+  // Held-out pieces are 0.76–0.86 or 1.14–1.24 of nominal, training pieces 0.9–1.1: the two
+  // first pieces' footprints differ.
+  ASSERT_FALSE(test.objects.empty());
+  EXPECT_FALSE(test.objects[0].LocalBounds().max.isApprox(s.objects[0].LocalBounds().max));
 }
 
 // Free floor cells (nothing above 5 cm within `clearance`) on a 0.1 m grid over the house.

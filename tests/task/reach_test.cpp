@@ -42,6 +42,12 @@ TEST(ReachSkillTest, TargetsOnTheFrontInHeightBands) {
     EXPECT_EQ(reach->goal_mask(i), 1u << reach->hand(i));
     EXPECT_NEAR((reach->goal(i, reach->hand(i)) - t).norm(), 0, 1e-12);
   }
+  // Evaluation groups trials by the target's band.
+  const char* kBands[] = {"low", "medium", "high"};
+  for (int b = 0; b < 3; ++b) {
+    reach->SetTarget(0, humanoid::kCjRightHand, reach->candidates(0, b).front());
+    EXPECT_EQ(reach->start_label(0), kBands[b]);
+  }
 }
 
 TEST(ReachSkillTest, ReferenceInitFacesTheTarget) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -238,6 +239,85 @@ TEST(WalkStyleTest, PoseRewardFollowsTheStyleClipsMeanPosture) {
   for (int i = 0; i < 4; ++i) EXPECT_EQ(walk2->average_pose(i), clip_mean(walk2->style_id(i)));
   c.walk.style_pose_weight = 1.5;  // a share outside [0, 1] is a config error
   EXPECT_THROW(c.walk.Validate(), Error);
+}
+
+// Walks among furniture: every env starts on free floor of its own room, its goal is free floor
+// of that room within range and reachable along free A* legs, the pelvis goal is the carrot on
+// that path, and touching a wall ends the episode as a failure.
+TEST(WalkRoomsTest, StartsGoalsAndPathsStayInTheEnvsRoom) {
+  SkillConfig c;
+  c.walk.rooms = 2;
+  c.walk.target_min_distance = 1.5;
+  c.walk.target_max_distance = 4.5;
+  c.walk.success_radius = 0.3;
+  auto s = testing::MakeSkillEnv(c, 4);
+  auto* walk = dynamic_cast<WalkSkill*>(s.setup.skill.get());
+  ASSERT_NE(walk, nullptr);
+  const scene::Scene& sc = *s.setup.context.scene;
+  ASSERT_EQ(sc.rooms.size(), 2u);
+  ASSERT_NE(walk->free_space(), nullptr);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(walk->room(i), i % 2);
+    const scene::Room& room = sc.rooms[walk->room(i)];
+    const Eigen::Vector2d root = s.env->pose(i).root_pos.head<2>();
+    EXPECT_TRUE(room.Contains(root)) << i;
+    EXPECT_TRUE(walk->free_space()->Free(root)) << i;
+    EXPECT_TRUE(room.Contains(walk->goal(i))) << i;
+    EXPECT_TRUE(walk->free_space()->Free(walk->goal(i))) << i;
+    const double d = (walk->goal(i) - root).norm();
+    EXPECT_GE(d, 1.5 - 1e-9);
+    EXPECT_LE(d, 4.5 + 1e-9);
+    const auto& points = walk->path(i).points();
+    EXPECT_TRUE(points.back().isApprox(walk->goal(i)));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t k = 1; k < points.size(); ++k) {
+      EXPECT_TRUE(walk->free_space()->SegmentFree(points[k - 1], points[k])) << i << " leg " << k;
+      const Eigen::Vector2d a = points[k - 1], ab = points[k] - a;
+      const double t = std::clamp((walk->target(i) - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      nearest = std::min(nearest, (a + t * ab - walk->target(i)).norm());
+    }
+    // The pelvis goal lies on the path, at most the lookahead from the start.
+    EXPECT_LT(nearest, 1e-9) << i;
+    EXPECT_LE((walk->target(i) - points.front()).norm(), c.walk.path_lookahead + 1e-9);
+    EXPECT_FALSE(WalkSkill::Collided(testing::ViewOf(*s.env, i))) << "standing on free floor";
+  }
+  // At the goal: success, no termination.
+  const Eigen::Vector2d g = walk->goal(0);
+  s.env->SetState(0, testing::PoseAt(Eigen::Vector3d(g.x(), g.y(), 0.89)));
+  sim::TaskStepResult r = walk->Step(testing::ViewOf(*s.env, 0));
+  EXPECT_TRUE(r.success);
+  EXPECT_FALSE(r.terminate);
+  // Astride the room's west wall: a collision, the episode ends without success.
+  const scene::Room& room = sc.rooms[walk->room(0)];
+  s.env->SetState(
+      0, testing::PoseAt(Eigen::Vector3d(room.floor_polygon[0].x(), room.Centroid().y(), 0.89)));
+  EXPECT_TRUE(WalkSkill::Collided(testing::ViewOf(*s.env, 0)));
+  r = walk->Step(testing::ViewOf(*s.env, 0));
+  EXPECT_TRUE(r.terminate);
+  EXPECT_FALSE(r.success);
+}
+
+// The path and goal travel in a snapshot: a restored env continues identically.
+TEST(WalkRoomsTest, SnapshotRestoresPaths) {
+  SkillConfig c;
+  c.walk.rooms = 2;
+  c.walk.target_min_distance = 1.5;
+  c.walk.target_max_distance = 4.5;
+  auto s = testing::MakeSkillEnv(c, 4);
+  std::vector<float> act(4 * 28, 0.0f);
+  for (int t = 0; t < 10; ++t) s.env->Step(act.data());
+  const std::string snap = s.env->SaveState();
+  // The same rooms (the scene comes from the skill's seed); its envs elsewhere until restored.
+  auto other = testing::MakeSkillEnv(c, 4);
+  std::vector<float> push(4 * 28, 0.3f);
+  for (int t = 0; t < 5; ++t) other.env->Step(push.data());
+  other.env->LoadState(snap);
+  for (int t = 0; t < 20; ++t) {
+    s.env->Step(act.data());
+    other.env->Step(act.data());
+  }
+  EXPECT_EQ(0, std::memcmp(s.env->observations(), other.env->observations(),
+                           sizeof(float) * 4 * s.env->obs_dim()));
 }
 
 }  // namespace

@@ -14,9 +14,9 @@
 
 #include "sims/core/config.h"
 #include "sims/fsm/instruction.h"
-#include "sims/fsm/navigation.h"
 #include "sims/fsm/policy_set.h"
 #include "sims/io/motion_record.h"
+#include "sims/scene/navigation.h"
 #include "sims/scene/scene.h"
 #include "sims/sim/task_hook.h"
 
@@ -24,21 +24,21 @@ namespace sims::fsm {
 
 /// FSM settings.
 struct StoryOptions {
-  int success_hold_steps = 20;        ///< Success must hold this long before switching (steps).
-  double walk_timeout_s = 25.0;       ///< Time-out of a walk instruction, plus ...
-  double walk_seconds_per_m = 2.0;    ///< ... this per metre of planned path beyond 5 m.
-  double skill_timeout_s = 10.0;      ///< Time-out of the other skills (SIMS: 10 s per step).
-  int max_retries = 1;                ///< Retries of an instruction after a fall.
-  bool reset_after_fall = true;       ///< No get-up: put the character back on its feet.
-  double fallen_head_height = 0.4;    ///< Head below this ...
-  double fallen_pelvis_height = 0.4;  ///< ... and pelvis below this = fallen (m).
-  double lookahead = 1.0;             ///< Walks chase a path point this far ahead (m).
-  int walk_success_hold_steps = 5;    ///< A walk only needs to arrive, not to stay (steps).
-  NavigationConfig navigation;        ///< Free-space grid and waypoints.
-  bool missing_policy_fails = true;   ///< Keyframes of skills without a policy fail (else: error).
-  uint64_t seed = 0;                  ///< Env seed and start placement (0: canonical start).
-  int threads = 1;                    ///< Environment threads.
-  sim::ObsAblation ablation;          ///< Inputs withheld from every policy (--no-text, ...).
+  int success_hold_steps = 20;         ///< Success must hold this long before switching (steps).
+  double walk_timeout_s = 25.0;        ///< Time-out of a walk instruction, plus ...
+  double walk_seconds_per_m = 2.0;     ///< ... this per metre of planned path beyond 5 m.
+  double skill_timeout_s = 10.0;       ///< Time-out of the other skills (SIMS: 10 s per step).
+  int max_retries = 1;                 ///< Retries of an instruction after a fall.
+  bool reset_after_fall = true;        ///< No get-up: put the character back on its feet.
+  double fallen_head_height = 0.4;     ///< Head below this ...
+  double fallen_pelvis_height = 0.4;   ///< ... and pelvis below this = fallen (m).
+  double lookahead = 1.0;              ///< Walks chase a path point this far ahead (m).
+  int walk_success_hold_steps = 5;     ///< A walk only needs to arrive, not to stay (steps).
+  scene::NavigationConfig navigation;  ///< Free-space grid and waypoints.
+  bool missing_policy_fails = true;    ///< Keyframes of skills without a policy fail (else: error).
+  uint64_t seed = 0;                   ///< Env seed and start placement (0: canonical start).
+  int threads = 1;                     ///< Environment threads.
+  sim::ObsAblation ablation;           ///< Inputs withheld from every policy (--no-text, ...).
 
   /// Lists the fields for JSON binding.
   template <class A>

@@ -89,6 +89,12 @@ std::vector<Scene> BuiltinRooms();
 /// with door openings between them and free floor around the furniture.
 Scene BuiltinHouse();
 
+/// `count` closed 5 m × 5 m rooms with walls, 1 m apart on a grid, each furnished with 4–7
+/// random pieces (RandomFurniture: held-out dimensions when `held_out`) against the walls or
+/// free-standing, without overlaps and covering at most 35 % of the floor; rooms are
+/// "room_<k>". For training and evaluating walks among furniture.
+Scene RandomRooms(int count, Rng& rng, bool held_out);
+
 /// Names accepted by BuiltinScene.
 std::vector<std::string> BuiltinSceneNames();
 

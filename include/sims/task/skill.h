@@ -183,7 +183,8 @@ class Skill : public sim::TaskHook {
   /// evaluation and story metrics; 0 for a skill without one.
   virtual double goal_error(const sim::EnvView& view) const;
   /// How env `env_id`'s current episode started, for evaluation broken down by start kind
-  /// (get-up: "seat", "bed", "floor", "fall"); "" when the skill has no such kinds.
+  /// (get-up: "seat", "bed", "floor", "fall"; reach: the target's height band); "" when the
+  /// skill has no such kinds.
   virtual std::string start_label(int /*env_id*/) const { return ""; }
   /// Width of the skill's own observation segment "task" after the contact goals (0: none).
   virtual int task_obs_dim() const { return 0; }

@@ -103,6 +103,11 @@ bool ReachSkill::BeginInstruction(const sim::EnvView& view, const InstructionTar
   return true;
 }
 
+std::string ReachSkill::start_label(int i) const {
+  const double z = target(i).z();
+  return z < kReachBandEdges[1] ? "low" : z < kReachBandEdges[2] ? "medium" : "high";
+}
+
 void ReachSkill::SampleTask(int i, Rng& rng) {
   const Bands& bands = candidates_[env_[i].object];
   std::vector<int> usable;

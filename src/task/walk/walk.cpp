@@ -16,6 +16,7 @@
 
 #include "sims/core/error.h"
 #include "sims/humanoid/features.h"
+#include "sims/scene/builtin.h"
 
 namespace sims::task {
 
@@ -27,6 +28,11 @@ constexpr double kStandingPelvisHeight = humanoid::kDefaultRootHeight;
 // body's width) must be at floor level.
 constexpr double kFloorTolerance = 0.05;
 constexpr double kClearance = 0.3;
+// Contacts above this height are not on the floor (m): a foot there stands on furniture.
+constexpr double kFloorContactHeight = 0.05;
+// Draws of a free point in a room, and of a reachable goal, before taking the last one.
+constexpr int kRoomDraws = 64;
+constexpr int kGoalDraws = 32;
 }  // namespace
 
 WalkSkill::WalkSkill(const SkillConfig& config, const SkillContext& context)
@@ -48,6 +54,83 @@ WalkSkill::WalkSkill(const SkillConfig& config, const SkillContext& context)
       }
     }
   }
+  if (config.walk.rooms > 0) {
+    SIMS_CHECK_MSG(context.scene && context.height_grid && !context.scene->rooms.empty(),
+                   "walk_rooms needs the skill's room scene");
+    free_space_ =
+        std::make_unique<const scene::FreeSpaceGrid>(*context.scene, *context.height_grid);
+    for (const scene::Room& r : context.scene->rooms) {
+      Eigen::Vector2d lo = r.floor_polygon.front(), hi = lo;
+      for (const auto& q : r.floor_polygon) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+      room_boxes_.emplace_back(lo, hi);
+    }
+  }
+}
+
+int WalkSkill::room(int env_id) const {
+  return room_boxes_.empty() ? -1 : env_id % static_cast<int>(room_boxes_.size());
+}
+
+Eigen::Vector2d WalkSkill::FreePointInRoom(int k, Rng& rng) const {
+  const auto& [lo, hi] = room_boxes_[k];
+  for (int draw = 0; draw < kRoomDraws; ++draw) {
+    const Eigen::Vector2d p(rng.Uniform(lo.x(), hi.x()), rng.Uniform(lo.y(), hi.y()));
+    if (free_space_->Free(p)) return p;
+  }
+  const Eigen::Vector2d centre = 0.5 * (lo + hi);
+  return free_space_->NearestFree(centre, 0.5 * (hi - lo).norm()).value_or(centre);
+}
+
+void WalkSkill::SampleRoomGoal(int i, const Eigen::Vector2d& from, Rng& rng) {
+  Eigen::Vector2d goal = from;
+  std::vector<Eigen::Vector2d> waypoints;
+  for (int draw = 0; draw < kGoalDraws; ++draw) {
+    const Eigen::Vector2d p = FreePointInRoom(room(i), rng);
+    const double d = (p - from).norm();
+    if (d < config_.walk.target_min_distance || d > config_.walk.target_max_distance) continue;
+    auto w = free_space_->Waypoints(from, p);
+    if (w.empty()) continue;
+    goal = p;
+    waypoints = std::move(w);
+    break;
+  }
+  // A room without a reachable goal in range keeps the character where it is: a trivial but
+  // valid episode.
+  if (waypoints.empty()) waypoints = {goal};
+  WalkState& st = walk_[i];
+  st.goal = goal;
+  st.hold = 0;
+  st.path = scene::PathFollower(from, std::move(waypoints));
+  FollowPath(i, from);
+}
+
+void WalkSkill::FollowPath(int i, const Eigen::Vector2d& root) {
+  WalkState& st = walk_[i];
+  st.target = st.path.Carrot(root, config_.walk.path_lookahead);
+  ClearGoals(i);
+  SetGoal(i, humanoid::kCjPelvis, {st.target.x(), st.target.y(), kStandingPelvisHeight});
+}
+
+void WalkSkill::SampleInitialState(int i, Rng& rng, sim::InitialState* init) {
+  if (free_space_) {
+    const Eigen::Vector2d p = FreePointInRoom(room(i), rng);
+    init->pose.root_pos.x() = p.x();
+    init->pose.root_pos.y() = p.y();
+  }
+  Skill::SampleInitialState(i, rng, init);
+}
+
+bool WalkSkill::Collided(const sim::EnvView& view) {
+  const mjData* d = view.data;
+  for (int c = 0; c < d->ncon; ++c) {
+    const int b1 = view.humanoid->geom_body(d->contact[c].geom1);
+    const int b2 = view.humanoid->geom_body(d->contact[c].geom2);
+    if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
+    const int b = b1 >= 0 ? b1 : b2;
+    if (b != humanoid::kLeftFoot && b != humanoid::kRightFoot) return true;
+    if (d->contact[c].pos[2] > kFloorContactHeight) return true;
+  }
+  return false;
 }
 
 Eigen::Vector2d WalkSkill::SampleTarget(const Eigen::Vector2d& from, Rng& rng) const {
@@ -72,6 +155,8 @@ Eigen::Vector2d WalkSkill::SampleTarget(const Eigen::Vector2d& from, Rng& rng) c
 
 void WalkSkill::SetTarget(int env_id, const Eigen::Vector2d& target_xy) {
   walk_[env_id].target = target_xy;
+  walk_[env_id].goal = target_xy;
+  walk_[env_id].path = scene::PathFollower(target_xy, {});
   walk_[env_id].hold = 0;
   ClearGoals(env_id);
   SetGoal(env_id, humanoid::kCjPelvis, {target_xy.x(), target_xy.y(), kStandingPelvisHeight});
@@ -84,7 +169,10 @@ void WalkSkill::OnReset(const sim::EnvView& view, Rng& rng) {
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
   walk_[i].prev_velocity = view.pose->root_lin_vel.head<2>();
   if (posture_) walk_[i].pose_average = view.pose->dof_pos;
-  SetTarget(i, SampleTarget(root, walk_[i].target_rng));
+  if (free_space_)
+    SampleRoomGoal(i, root, walk_[i].target_rng);
+  else
+    SetTarget(i, SampleTarget(root, walk_[i].target_rng));
 }
 
 bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
@@ -121,7 +209,7 @@ double WalkSkill::StylePoseReward(int env_id, const JointAngles& mean_pose) cons
 }
 
 double WalkSkill::goal_error(const sim::EnvView& view) const {
-  return (walk_[view.env_id].target - view.pose->root_pos.head<2>()).norm();
+  return (walk_[view.env_id].goal - view.pose->root_pos.head<2>()).norm();
 }
 
 double WalkSkill::Reward(const Eigen::Vector2d& target, const Eigen::Vector2d& root,
@@ -162,11 +250,22 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   }
   r.reward = static_cast<float>(reward);
   walk_[i].prev_velocity = vel;
-  r.success = (walk_[i].target - root).norm() < config_.walk.success_radius;
+  if (free_space_ && Collided(view)) {
+    r.terminate = true;
+    walk_[i].hold = 0;
+    return r;
+  }
+  r.success = (walk_[i].goal - root).norm() < config_.walk.success_radius;
   walk_[i].hold = r.success ? walk_[i].hold + 1 : 0;
   r.completed = walk_[i].hold >= config_.success_hold_steps;
-  if (r.completed && config_.walk.resample_target_on_success)
-    SetTarget(i, SampleTarget(root, walk_[i].target_rng));
+  if (r.completed && config_.walk.resample_target_on_success) {
+    if (free_space_)
+      SampleRoomGoal(i, root, walk_[i].target_rng);
+    else
+      SetTarget(i, SampleTarget(root, walk_[i].target_rng));
+  } else if (free_space_) {
+    FollowPath(i, root);  // the next observation's pelvis goal
+  }
   return r;
 }
 
@@ -180,6 +279,25 @@ void WalkState::Serialize(StateArchive* a) {
 void WalkSkill::SerializeSkillState(int env_id, StateArchive* a) {
   WalkState& st = walk_[env_id];
   st.Serialize(a);
+  if (free_space_) {
+    a->Reals("goal", &st.goal);
+    std::vector<Eigen::Vector2d> points = st.path.points();
+    int64_t n = static_cast<int64_t>(points.size());
+    a->Int("path_points", &n, 1, free_space_->nx() * static_cast<int64_t>(free_space_->ny()) + 2);
+    points.resize(n);
+    for (auto& q : points) a->Reals("path_point", &q);
+    int64_t segment = static_cast<int64_t>(st.path.segment());
+    double progress = st.path.progress();
+    a->Int("path_segment", &segment, 0, n - 1);
+    a->Real("path_progress", &progress);
+    if (a->loading()) {
+      st.path = scene::PathFollower(points.front(), {points.begin() + 1, points.end()});
+      st.path.Restore(static_cast<size_t>(segment), progress);
+    }
+  } else if (a->loading()) {
+    st.goal = st.target;
+    st.path = scene::PathFollower(st.target, {});
+  }
   if (!posture_) return;
   if (!a->loading() || a->left() > 0) {
     a->Reals("pose_average", &st.pose_average);
@@ -202,13 +320,16 @@ void WalkParams::Validate() const {
           "a share in [0, 1]");
   Require(style_pose_scale > 0, "style_pose_scale", "a positive scale (1/rad²)");
   Require(style_pose_time > 0, "style_pose_time", "a positive time constant (s)");
+  Require(rooms >= 0 && rooms <= 64, "walk_rooms", "a room count in [0, 64] (0: open floor)");
+  Require(path_lookahead > 0, "walk_path_lookahead", "a positive distance (m)");
 }
 
 // The registry entry: vocabulary traits (core/skill_vocabulary.cpp), params, scene, factory.
 SkillInfo WalkSkillInfo() {
   SkillInfo info = BuiltinSkillInfo("walk");
   info.params = ConfigToJson(WalkParams{});
-  info.build_scene = [](const SkillConfig&, Rng&) {
+  info.build_scene = [](const SkillConfig& c, Rng& rng) {
+    if (c.walk.rooms > 0) return scene::RandomRooms(c.walk.rooms, rng, c.object.held_out_objects);
     scene::Scene s;
     s.name = "flat_ground";
     return s;

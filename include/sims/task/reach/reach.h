@@ -34,6 +34,9 @@ class ReachSkill : public ObjectSkill {
   /// As ObjectSkill's, then the caption's hand and height band (or target.point) pick the
   /// target: the candidate of that band nearest the character.
   bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
+  /// The height band of env i's target ("low", "medium", "high"), so evaluation reports
+  /// success per band.
+  std::string start_label(int env_id) const override;
 
   /// Env i's reaching contact joint (humanoid::kCjLeftHand or humanoid::kCjRightHand).
   int hand(int env_id) const { return hand_[env_id]; }

@@ -13,8 +13,18 @@
 // angles and q̃ the character's, averaged over ~style_pose_time s. Success: within
 // walk_success_radius; after success has held for success_hold_steps a new target is drawn so one
 // episode practises several approaches.
+//
+// Among furniture (walk_rooms > 0, walk_params.h): each env walks in its own random furnished
+// room, the episode's goal is free floor reachable by A*, and the pelvis goal the policy sees and
+// the reward above measure is a carrot walk_path_lookahead ahead on the A* path (the FSM's
+// pure pursuit), so training sees the targets stories give. Success is the final goal within
+// walk_success_radius; touching furniture or a wall (any body but the feet, or a foot above
+// the floor) ends the episode as a failure.
 #pragma once
 
+#include <memory>
+
+#include "sims/scene/navigation.h"
 #include "sims/task/skill.h"
 
 namespace sims::task {
@@ -25,7 +35,11 @@ struct WalkState {
   /// One angle per hinge (rad).
   using JointAngles = Eigen::Matrix<double, humanoid::kNumDofs, 1>;
 
-  Eigen::Vector2d target = Eigen::Vector2d::Zero();         ///< Pelvis target (world xy).
+  Eigen::Vector2d target = Eigen::Vector2d::Zero();  ///< Pelvis target (world xy).
+  Eigen::Vector2d goal =
+      Eigen::Vector2d::Zero();  ///< Where the walk ends (= target on open floor).
+  /// The A* path to the goal (walks among furniture only).
+  scene::PathFollower path{Eigen::Vector2d::Zero(), {}};
   Eigen::Vector2d prev_velocity = Eigen::Vector2d::Zero();  ///< Root velocity one step ago (xy).
   int hold = 0;                                             ///< Consecutive steps success has held.
   /// Later targets (after a success) come from this per-env stream, seeded at reset, so that the
@@ -52,13 +66,25 @@ class WalkSkill : public Skill {
   sim::TaskStepResult Step(const sim::EnvView& view) override;
   /// Walks to target.point (xy), or to the object's centre when only an object is given.
   bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
-  /// Pelvis-to-target distance (xy).
+  /// Pelvis-to-goal distance (xy).
   double goal_error(const sim::EnvView& view) const override;
+  /// Among furniture, places the character on free floor of env i's room first.
+  void SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) override;
 
   /// Sets env i's target (world xy; z is ignored) — used by the FSM and evaluation.
   void SetTarget(int env_id, const Eigen::Vector2d& target_xy);
-  /// Env i's current target.
+  /// Env i's current target (the pelvis goal it is shown and rewarded for).
   Eigen::Vector2d target(int env_id) const { return walk_[env_id].target; }
+  /// Env i's goal: where its walk ends (the target itself on open floor).
+  Eigen::Vector2d goal(int env_id) const { return walk_[env_id].goal; }
+  /// Env i's A* path (walks among furniture).
+  const scene::PathFollower& path(int env_id) const { return walk_[env_id].path; }
+  /// Env i's room (walks among furniture; -1 on open floor).
+  int room(int env_id) const;
+  /// The free-space grid of the rooms (nullptr on open floor).
+  const scene::FreeSpaceGrid* free_space() const { return free_space_.get(); }
+  /// True when the character touches the scene with anything but its feet on the floor.
+  static bool Collided(const sim::EnvView& view);
   /// The speed env `env_id`'s reward asks for (m/s): target_speed, or its style clip's pace.
   double target_speed(int env_id) const;
   /// The style-posture reward of env `env_id` for averaged joint angles `mean_pose` (1 when no
@@ -77,7 +103,16 @@ class WalkSkill : public Skill {
   void SerializeSkillState(int env_id, StateArchive* archive) override;
 
  private:
+  // Among furniture: a free point of room k, the goal drawn for env i from `from`, and the
+  // pelvis goal moved to the path's carrot.
+  Eigen::Vector2d FreePointInRoom(int k, Rng& rng) const;
+  void SampleRoomGoal(int env_id, const Eigen::Vector2d& from, Rng& rng);
+  void FollowPath(int env_id, const Eigen::Vector2d& root);
+
   std::vector<WalkState> walk_;  // per env
+  // Among furniture: the free-space grid and each room's floor box (min, max corners).
+  std::unique_ptr<const scene::FreeSpaceGrid> free_space_;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> room_boxes_;
   // Whether the style-posture term is on (style_pose_weight > 0 and a motion library).
   bool posture_ = false;
   // Mean joint angles of every library clip (the style clips' postures), when

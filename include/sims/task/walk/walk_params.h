@@ -27,6 +27,14 @@ struct WalkParams {
   double style_pose_weight = 0.0;
   double style_pose_scale = 50.0;  ///< 1/rad²: mean squared error 0.02 rad² pays e⁻¹.
   double style_pose_time = 1.0;    ///< Time constant of the posture average (s).
+  /// Walks among furniture: 0 trains on open floor; n > 0 builds n random furnished rooms
+  /// (scene::RandomRooms) and gives each env a room, starts on its free floor, targets on free
+  /// floor of the same room reachable by A* (scene::FreeSpaceGrid), a pelvis goal that chases
+  /// a point path_lookahead ahead on the path (as the story FSM does), and ends the episode
+  /// as a failure when the character touches furniture or a wall. The furniture has held-out
+  /// dimensions when held_out_objects is set (evaluation).
+  int rooms = 0;
+  double path_lookahead = 1.0;  ///< m ahead on the A* path (the FSM's lookahead).
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -41,6 +49,8 @@ struct WalkParams {
     a->Visit(SIMS_NVP(style_pose_weight));
     a->Visit(SIMS_NVP(style_pose_scale));
     a->Visit(SIMS_NVP(style_pose_time));
+    a->Visit(MakeNameValue("walk_rooms", &rooms));
+    a->Visit(MakeNameValue("walk_path_lookahead", &path_lookahead));
   }
   /// Checks ranges.
   void Validate() const;

@@ -1,8 +1,8 @@
-#include "sims/fsm/navigation.h"
+#include "sims/scene/navigation.h"
 
 #include <gtest/gtest.h>
 
-namespace sims::fsm {
+namespace sims::scene {
 namespace {
 
 // A wall from y = −3 to y = 2 at x = 0 (0.2 m thick, 1 m tall): the only way from (−2, 0) to
@@ -99,5 +99,22 @@ TEST(PathFollowerTest, ProjectionNeverJumpsAcrossAWall) {
   EXPECT_NEAR(f.Carrot({2.0, 0.0}, 1.0).x(), 4.0, 1e-9);
 }
 
+// A snapshot keeps the points and the projection; restoring them resumes the same carrots.
+TEST(PathFollowerTest, RestoredProgressResumesTheSameCarrots) {
+  PathFollower f({0, 0}, {{5, 0}, {5, 1}, {0, 1}});
+  for (const Eigen::Vector2d here :
+       {Eigen::Vector2d(2, 0), Eigen::Vector2d(4, 0), Eigen::Vector2d(5, 0.5)})
+    f.Carrot(here, 1.0);
+  ASSERT_EQ(f.segment(), 1u);
+  PathFollower g(f.points().front(), {f.points().begin() + 1, f.points().end()});
+  g.Restore(f.segment(), f.progress());
+  // From the start of the path the restored follower does not jump back.
+  EXPECT_TRUE(g.Carrot({0.0, 0.0}, 1.0).isApprox(f.Carrot({0.0, 0.0}, 1.0)));
+  PathFollower h({0, 0}, {{1, 0}});
+  h.Restore(7, 3.0);  // out of range: clamped to the last segment's end
+  EXPECT_EQ(h.segment(), 0u);
+  EXPECT_EQ(h.progress(), 1.0);
+}
+
 }  // namespace
-}  // namespace sims::fsm
+}  // namespace sims::scene

@@ -12,7 +12,7 @@
 #include "sims/scene/height_grid.h"
 #include "sims/scene/scene.h"
 
-namespace sims::fsm {
+namespace sims::scene {
 
 /// Free-space grid settings.
 struct NavigationConfig {
@@ -39,7 +39,7 @@ struct NavigationConfig {
 class FreeSpaceGrid {
  public:
   /// Samples `heights` over the scene bounds (plus margin) and dilates obstacles by clearance.
-  FreeSpaceGrid(const scene::Scene& scene, const scene::SceneHeightGrid& heights,
+  FreeSpaceGrid(const Scene& scene, const SceneHeightGrid& heights,
                 const NavigationConfig& config = {});
   /// True when (x, y) is inside the grid and free.
   bool Free(const Eigen::Vector2d& p) const;
@@ -88,6 +88,14 @@ class PathFollower {
   Eigen::Vector2d Carrot(const Eigen::Vector2d& here, double lookahead);
   /// True when `carrot` is the path's end (the last stretch).
   bool IsEnd(const Eigen::Vector2d& carrot) const;
+  /// The path's points: the start, then the waypoints.
+  const std::vector<Eigen::Vector2d>& points() const { return points_; }
+  /// The segment the last projection fell on (for snapshots).
+  size_t segment() const { return segment_; }
+  /// Where on that segment, in [0, 1] (for snapshots).
+  double progress() const { return t_; }
+  /// Puts the projection back where a snapshot had it (clamped to the path).
+  void Restore(size_t segment, double progress);
 
  private:
   std::vector<Eigen::Vector2d> points_;
@@ -95,4 +103,4 @@ class PathFollower {
   double t_ = 0;        // ... and where on it
 };
 
-}  // namespace sims::fsm
+}  // namespace sims::scene

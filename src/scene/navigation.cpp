@@ -1,4 +1,4 @@
-#include "sims/fsm/navigation.h"
+#include "sims/scene/navigation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "sims/core/error.h"
 
-namespace sims::fsm {
+namespace sims::scene {
 
 void NavigationConfig::Validate() const {
   Require(resolution > 0, "resolution", "a positive cell size (m)");
@@ -16,7 +16,7 @@ void NavigationConfig::Validate() const {
   Require(waypoint_spacing > 0, "waypoint_spacing", "a positive distance (m)");
 }
 
-FreeSpaceGrid::FreeSpaceGrid(const scene::Scene& scene, const scene::SceneHeightGrid& heights,
+FreeSpaceGrid::FreeSpaceGrid(const Scene& scene, const SceneHeightGrid& heights,
                              const NavigationConfig& config)
     : config_(config) {
   ValidateConfig(config_, "navigation config");
@@ -214,4 +214,9 @@ bool PathFollower::IsEnd(const Eigen::Vector2d& carrot) const {
   return (carrot - points_.back()).norm() < 1e-9;
 }
 
-}  // namespace sims::fsm
+void PathFollower::Restore(size_t segment, double progress) {
+  segment_ = points_.size() < 2 ? 0 : std::min(segment, points_.size() - 2);
+  t_ = std::clamp(progress, 0.0, 1.0);
+}
+
+}  // namespace sims::scene
