@@ -1,7 +1,8 @@
 // eval_story: SIMS Table 2 protocol over generated stories (success rate, contact error,
 // success steps, penetration, foot sliding, FID, APD); prints JSON and writes --out. Stories run
 // through run_story's pipeline (story/story.h), captions → style z included; they run batched
-// (one policy call per policy per control step over all stories) unless --sequential.
+// (one policy call per policy per control step over all stories) unless --sequential. With
+// --out X.json a per-difficulty HTML table goes to X.html.
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
                  "when present)");
   app.add_option("--outputs", outputs,
                  "also write each story's run_story outputs to DIR/<difficulty>_<i>");
-  app.add_option("--out", out, "write the JSON report here too");
+  app.add_option("--out", out, "write the JSON report here too (and its table to .html)");
   bool sequential = false;
   app.add_flag("--sequential", sequential,
                "run the stories one after another instead of batched (same results)");
@@ -52,7 +53,13 @@ int main(int argc, char** argv) {
     o.environment = sims::InstalledEnvironment();  // $SIMS_LLM_* for planning the themes
     if (!reference.empty() && std::filesystem::exists(reference)) o.reference_manifest = reference;
     const auto r = sims::story::EvaluateStories(o);
-    if (!out.empty()) sims::WriteJsonFile(out, r);
+    if (!out.empty()) {
+      sims::WriteJsonFile(out, r);
+      std::filesystem::path html = out;
+      html.replace_extension(".html");
+      if (html != std::filesystem::path(out))
+        sims::WriteFileAtomic(html, sims::story::StoryEvalHtml(r));
+    }
     std::cout << r.dump(2) << std::endl;
     return 0;
   });

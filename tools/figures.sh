@@ -6,8 +6,8 @@
 #
 #   tools/figures.sh [--out DIR] [--write] [--quick]
 #
-# --quick runs 10 trials / 2 story seeds / no retrieval instead of 100 / 10 (a smoke test; its
-# figures are not the README's). Every command's seed is fixed, so a rerun on the same machine
+# --quick runs 10 trials / 2 story seeds / 3 stories per difficulty / no retrieval instead of
+# 100 / 10 / 30 (a smoke test; its figures are not the README's). Every command's seed is fixed, so a rerun on the same machine
 # reproduces the figures; another CPU may move them slightly (float kernels differ).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -16,17 +16,18 @@ OUT="$ROOT/runs/figures"
 WRITE=0
 TRIALS=100
 SEEDS=10
+STORIES=30
 RETRIEVAL=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --out) OUT="$2"; shift 2 ;;
     --write) WRITE=1; shift ;;
-    --quick) TRIALS=10; SEEDS=2; RETRIEVAL=0; shift ;;
+    --quick) TRIALS=10; SEEDS=2; STORIES=3; RETRIEVAL=0; shift ;;
     -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
     *) echo "figures.sh: unknown argument '$1' (expected --out DIR, --write, --quick)" >&2; exit 2 ;;
   esac
 done
-for tool in eval_policy run_story text_to_style; do
+for tool in eval_policy run_story eval_story text_to_style; do
   [ -x "$BIN/$tool" ] || { echo "figures.sh: $BIN/$tool missing: run bash cmake/build.sh first" >&2; exit 1; }
 done
 cd "$ROOT"
@@ -52,6 +53,12 @@ for ((s = 0; s < SEEDS; ++s)); do
   "$BIN/run_story" "$STORY" --seed "$s" --out "$OUT/story_seed$s" --log-level warn > /dev/null
 done
 
+# 2b. SIMS Table 2 protocol: STORIES stories per difficulty from seed 0, batched (eval_story also
+# writes its HTML table beside the JSON).
+step "eval_story --stories $STORIES --seed 0"
+"$BIN/eval_story" --stories "$STORIES" --seed 0 --out "$OUT/eval_story.json" --log-level warn \
+  > /dev/null
+
 # 3. Caption retrieval of the bundled motion-text model, dev and test paraphrase sets apart.
 if [ "$RETRIEVAL" = 1 ] && [ ! -f data/language/text_motion/model.json ] &&
    [ ! -f assets/language/text_motion/model.json ]; then
@@ -68,10 +75,13 @@ if [ "$RETRIEVAL" = 1 ]; then
 fi
 
 # 4. One JSON with everything, commands and seeds included.
-python3 - "$OUT" "$skills" "$TRIALS" "$SEEDS" "$EVAL_SEED" "$STORY" <<'PY'
+python3 - "$OUT" "$skills" "$TRIALS" "$SEEDS" "$EVAL_SEED" "$STORY" "$STORIES" <<'PY'
 import glob, json, os, sys
-out, skills, trials, seeds, eval_seed, story = sys.argv[1:7]
-fig = {"policies": {}, "story": {}, "retrieval": {}}
+out, skills, trials, seeds, eval_seed, story, stories = sys.argv[1:8]
+fig = {"policies": {}, "story": {}, "retrieval": {}, "stories": {}}
+e = json.load(open(os.path.join(out, "eval_story.json")))
+fig["stories"] = {"command": f"eval_story --stories {stories} --seed 0",
+                  "per_difficulty": e["per_difficulty"]}
 for skill in skills.split():
     e = json.load(open(os.path.join(out, f"eval_{skill}.json")))
     fig["policies"][skill] = {k: e[k] for k in (
@@ -121,6 +131,18 @@ lines += ["", f"Main story (`{s['script']}`): {s['succeeded']} of {s['keyframes'
           + ", ".join(f"{x['succeeded']}/{x['keyframes']}" for x in s["per_seed"]) + ")."]
 for name, r in sorted(fig["retrieval"].items()):
     lines.append(f"Caption retrieval, {name} paraphrases: {r['correct']}/{r['total']}.")
+paper = {"simple": 74.3, "mid": 42.2, "hard": 31.5}
+lines += ["", f"Stories per difficulty (SIMS Table 2 protocol, `{fig['stories']['command']}`; "
+          "the paper's full method for scale):", "",
+          "| difficulty | stories | keyframe success | SIMS paper | contact error | foot sliding | FID | APD |",
+          "|---|---|---|---|---|---|---|---|"]
+for d in ("simple", "mid", "hard"):
+    x = fig["stories"]["per_difficulty"].get(d)
+    if not x:
+        continue
+    lines.append(f"| {d} | {x['stories']} | {100 * x['success_rate']:.1f} % | {paper[d]} % | "
+                 f"{x['contact_error']:.2f} m | {x['foot_sliding_m_per_s']:.2f} m/s | "
+                 f"{x.get('fid', float('nan')):.2f} | {x['apd']:.2f} |")
 lines += ["", "<!-- figures:end -->"]
 text = open(sys.argv[2]).read()
 begin, end = text.find("<!-- figures:begin"), text.find("<!-- figures:end -->")

@@ -2,6 +2,9 @@
 
 #include <chrono>
 #include <exception>
+#include <map>
+
+#include <fmt/format.h>
 
 #include "sims/core/error.h"
 #include "sims/core/log.h"
@@ -248,6 +251,44 @@ nlohmann::json BenchStories(const StoryEvalOptions& o) {
           {"frames", frames},
           {"frames_per_s_sequential", frames / std::max(sequential_s, 1e-9)},
           {"frames_per_s_batched", frames / std::max(batched_s, 1e-9)}};
+}
+
+std::string StoryEvalHtml(const nlohmann::json& report) {
+  // SIMS Table 2 (success rate of the full method), for scale.
+  const std::map<std::string, double> paper = {{"simple", 0.743}, {"mid", 0.422}, {"hard", 0.315}};
+  auto num = [](const nlohmann::json& d, const char* key, int decimals,
+                double scale = 1.0) -> std::string {
+    if (!d.contains(key) || !d[key].is_number()) return "–";
+    return fmt::format("{:.{}f}{}", scale * d[key].get<double>(), decimals,
+                       scale == 100.0 ? " %" : "");
+  };
+  std::string rows;
+  const nlohmann::json per = report.value("per_difficulty", nlohmann::json::object());
+  for (const auto& [difficulty, d] : per.items()) {
+    const auto it = paper.find(difficulty);
+    rows += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+        "<td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+        difficulty, d.value("stories", 0), num(d, "success_rate", 1, 100.0),
+        it == paper.end() ? "–" : fmt::format("{:.1f} %", 100 * it->second),
+        num(d, "success_steps", 2), num(d, "contact_error", 3),
+        num(d, "penetration_fraction", 2, 100.0), num(d, "penetration_max_depth", 3),
+        num(d, "foot_sliding_m_per_s", 3), num(d, "fid", 2), num(d, "apd", 2));
+  }
+  const nlohmann::json ablation = report.value("ablation", nlohmann::json::object());
+  return fmt::format(
+      "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>eval_story</title>\n"
+      "<style>body{{font-family:sans-serif}}table{{border-collapse:collapse}}"
+      "td,th{{border:1px solid #999;padding:4px 8px;text-align:right}}"
+      "td:first-child{{text-align:left}}</style></head><body>\n"
+      "<h1>Stories per difficulty (SIMS Table 2 protocol)</h1>\n"
+      "<p>Policies: {}; ablation: {}.</p>\n<table>\n"
+      "<tr><th>difficulty</th><th>stories</th><th>success rate</th><th>SIMS paper</th>"
+      "<th>success steps</th><th>contact error (m)</th><th>penetration</th>"
+      "<th>max depth (m)</th><th>foot sliding (m/s)</th><th>FID</th><th>APD</th></tr>\n{}"
+      "</table>\n<p>Success rate: keyframes succeeded / keyframes. The paper's column is its "
+      "full method's success rate, for scale.</p>\n</body></html>\n",
+      report.value("policies", std::string("?")), ablation.dump(), rows);
 }
 
 }  // namespace sims::story

@@ -286,5 +286,35 @@ TEST(StoryBatchTest, BatchedStoriesEqualSequentialRuns) {
   EXPECT_TRUE(in_threes["timing"].contains("run_s"));
 }
 
+// The HTML table beside eval_story's JSON: one row per difficulty with its figures, the paper's
+// success rate beside ours, and a dash for a metric the report lacks.
+TEST(StoryEvalHtmlTest, OneRowPerDifficultyWithItsFigures) {
+  const nlohmann::json report = {{"policies", "p.json"},
+                                 {"ablation", {{"no_text", false}}},
+                                 {"per_difficulty",
+                                  {{"simple",
+                                    {{"stories", 30},
+                                     {"success_rate", 0.275},
+                                     {"success_steps", 0.8},
+                                     {"contact_error", 0.9367},
+                                     {"penetration_fraction", 0.009},
+                                     {"penetration_max_depth", 0.047},
+                                     {"foot_sliding_m_per_s", 0.4197},
+                                     {"fid", 3.335},
+                                     {"apd", 1.384}}},
+                                   {"hard", {{"stories", 2}, {"success_rate", 0.5}}}}}};
+  const std::string html = StoryEvalHtml(report);
+  EXPECT_NE(html.find("<table>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>simple</td><td>30</td><td>27.5 %</td><td>74.3 %</td><td>0.80</td>"
+                      "<td>0.937</td><td>0.90 %</td><td>0.047</td><td>0.420</td><td>3.33</td>"
+                      "<td>1.38</td></tr>"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<tr><td>hard</td><td>2</td><td>50.0 %</td><td>31.5 %</td><td>–</td>"),
+            std::string::npos)
+      << html;
+  EXPECT_EQ(html.find("mid"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sims::story

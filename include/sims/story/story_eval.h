@@ -52,6 +52,11 @@ StoryInput EvalStoryInput(const StoryEvalOptions& options, const nlohmann::json&
 /// the stories ran ("batched", "batch_size", "timing": seconds to prepare, run and measure).
 nlohmann::json EvaluateStories(const StoryEvalOptions& options);
 
+/// The report's per-difficulty metrics as a small self-contained HTML page (one table row per
+/// difficulty, SIMS Table 2's columns, the paper's success rates for comparison); eval_story
+/// writes it beside its --out JSON.
+std::string StoryEvalHtml(const nlohmann::json& report);
+
 /// Times the protocol's stories (options.difficulties × stories_per_difficulty, planned as
 /// EvaluateStories plans them) run one after another (RunStory each) and batched (RunStories,
 /// ThreadCount() threads); checks that both give the same outcomes and motion to the bit.
