@@ -94,6 +94,19 @@ void Skill::SetGoal(int env_id, int joint, const Eigen::Vector3d& target) {
 
 void Skill::ClearGoals(int env_id) { state_[env_id].mask = 0; }
 
+bool OnlyFeetOnTheFloor(const sim::EnvView& view) {
+  const mjData* d = view.data;
+  for (int c = 0; c < d->ncon; ++c) {
+    const int b1 = view.humanoid->geom_body(d->contact[c].geom1);
+    const int b2 = view.humanoid->geom_body(d->contact[c].geom2);
+    if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
+    const int b = b1 >= 0 ? b1 : b2;
+    if (b != humanoid::kLeftFoot && b != humanoid::kRightFoot) return false;
+    if (d->contact[c].pos[2] > kFloorContactHeight) return false;
+  }
+  return true;
+}
+
 void Skill::SetStyle(int env_id, int style) { state_[env_id].style = style; }
 
 void Skill::SetStyleVector(int env_id, const Eigen::VectorXf& z) {

@@ -260,6 +260,12 @@ void ResolveSkillParams(SkillConfig* config);
 /// The explicit skill registry (mujoco_mpc style GetTasks()): the built-in skills, then the
 /// registered ones. References stay valid.
 const std::deque<SkillInfo>& GetSkills();
+/// Contacts above this height are not on the floor (m): a foot there stands on furniture.
+inline constexpr double kFloorContactHeight = 0.05;
+/// True when the character touches the scene with nothing but its feet, and those only on the
+/// floor (contact points at most kFloorContactHeight high).
+bool OnlyFeetOnTheFloor(const sim::EnvView& view);
+
 /// Registry lookup; throws sims::Error listing the known names.
 const SkillInfo& FindSkill(const std::string& name);
 /// Adds a skill (tests, plugins) to the registry and its traits to the skill vocabulary; from

@@ -156,17 +156,7 @@ bool GetUpSkill::Standing(const humanoid::BodyStates& b, const GetUpParams& para
 }
 
 bool GetUpSkill::StandingClear(const sim::EnvView& view) const {
-  if (!Standing(*view.bodies, config_.getup)) return false;
-  const mjData* d = view.data;
-  for (int c = 0; c < d->ncon; ++c) {
-    const int b1 = view.humanoid->geom_body(d->contact[c].geom1);
-    const int b2 = view.humanoid->geom_body(d->contact[c].geom2);
-    if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
-    const int b = b1 >= 0 ? b1 : b2;
-    if (b != humanoid::kLeftFoot && b != humanoid::kRightFoot) return false;
-    if (d->contact[c].pos[2] > kFloorContactHeight) return false;  // standing on furniture
-  }
-  return true;
+  return Standing(*view.bodies, config_.getup) && OnlyFeetOnTheFloor(view);
 }
 
 GetUpSkill::RiseInputs GetUpSkill::RiseInputsOf(const humanoid::BodyStates& b) {

@@ -28,8 +28,6 @@ constexpr double kStandingPelvisHeight = humanoid::kDefaultRootHeight;
 // body's width) must be at floor level.
 constexpr double kFloorTolerance = 0.05;
 constexpr double kClearance = 0.3;
-// Contacts above this height are not on the floor (m): a foot there stands on furniture.
-constexpr double kFloorContactHeight = 0.05;
 // Draws of a free point in a room, and of a reachable goal, before taking the last one.
 constexpr int kRoomDraws = 64;
 constexpr int kGoalDraws = 32;
@@ -120,18 +118,7 @@ void WalkSkill::SampleInitialState(int i, Rng& rng, sim::InitialState* init) {
   Skill::SampleInitialState(i, rng, init);
 }
 
-bool WalkSkill::Collided(const sim::EnvView& view) {
-  const mjData* d = view.data;
-  for (int c = 0; c < d->ncon; ++c) {
-    const int b1 = view.humanoid->geom_body(d->contact[c].geom1);
-    const int b2 = view.humanoid->geom_body(d->contact[c].geom2);
-    if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
-    const int b = b1 >= 0 ? b1 : b2;
-    if (b != humanoid::kLeftFoot && b != humanoid::kRightFoot) return true;
-    if (d->contact[c].pos[2] > kFloorContactHeight) return true;
-  }
-  return false;
-}
+bool WalkSkill::Collided(const sim::EnvView& view) { return !OnlyFeetOnTheFloor(view); }
 
 Eigen::Vector2d WalkSkill::SampleTarget(const Eigen::Vector2d& from, Rng& rng) const {
   const auto& grid = *context_.height_grid;

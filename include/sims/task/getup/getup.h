@@ -49,8 +49,6 @@ inline constexpr double kStandDiskRadius = 0.3;
 /// Largest feet-phase reward and smallest rise-phase reward: finishing the feet phase never
 /// lowers the reward.
 inline constexpr double kFeetPhaseWeight = 0.2;
-/// Contacts above this height are not on the floor (m).
-inline constexpr double kFloorContactHeight = 0.05;
 
 /// A precomputed fall state: the pose (root xy at the origin) and how far its bodies reach
 /// from the root horizontally, for placing it clear of furniture.
