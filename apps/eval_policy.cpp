@@ -36,6 +36,11 @@ int main(int argc, char** argv) {
   app.add_option("--reference-starts", o.reference_starts,
                  "share of trials started from motion clips as in training (0-1; default 0: "
                  "standing starts)");
+  app.add_option("--record", o.record_dir,
+                 "write the first --record-trials trials' motions (trial_K.json) and scenes with "
+                 "the animated character (trial_K.glb) to this folder");
+  app.add_option("--record-trials", o.record_trials, "trials --record keeps (default 4)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--json", json, "print the report as JSON");
   app.add_option("--out", out, "also write the JSON report to this file");
   sims::AddAppFlags(&app, &flags);
@@ -46,6 +51,7 @@ int main(int argc, char** argv) {
     o.checkpoint = checkpoint;
     o.config = config;
     o.partnet_root = partnet;
+    if (!o.record_dir.empty() && o.record_trials == 0) o.record_trials = 4;
     const auto report = sims::eval::EvaluatePolicy(o);
     auto j = report.ToJson();
     // Which weights were measured, whatever the path was called then.

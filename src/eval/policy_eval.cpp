@@ -8,6 +8,7 @@
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
 #include "sims/eval/motion_metrics.h"
+#include "sims/io/gltf_export.h"
 #include "sims/io/motion_record.h"
 #include "sims/language/embedding_bank.h"
 #include "sims/language/motion_text.h"
@@ -307,9 +308,24 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   // Style evaluation: trial k pursues emotion k mod E with that emotion's (k / E)-th caption;
   // its motion (one frame per control step) is labelled when it ends.
   std::vector<std::vector<motion::MotionFrame>> motion(n_env);
+  // --record: the first record_trials trials' frames, written when each trial ends.
+  if (o.record_trials > 0 && !o.record_dir.empty())
+    std::filesystem::create_directories(o.record_dir);
+  std::vector<std::unique_ptr<io::MotionRecordBuilder>> recording(n_env);
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
     rep.results[trial[i]].start = setup.skill->start_label(i);
+    if (trial[i] < o.record_trials && !o.record_dir.empty()) {
+      recording[i] =
+          std::make_unique<io::MotionRecordBuilder>(setup.context.humanoid, 1.0 / rep.control_dt);
+      recording[i]->SetTitle(fmt::format("{} trial {}", sc.skill, trial[i]));
+      recording[i]->SetScene({setup.context.scene ? setup.context.scene->name : "", ""});
+      io::KeyframeAnnotation a;
+      a.skill = sc.skill;
+      a.caption = rep.results[trial[i]].start;
+      recording[i]->BeginKeyframe(a);
+      recording[i]->AddFrame(env.pose(i));
+    }
     if (!o.style_eval) return;
     const int k = trial[i], e = static_cast<int>(st.emotions.size());
     const auto& list = st.captions.at(st.emotions[k % e]);
@@ -338,6 +354,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       ++t.length;
       // Success counts once the task reports itself accomplished (held as long as required).
       if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
+      if (!env.dones()[i] && recording[i]) recording[i]->AddFrame(env.pose(i));
       if (!env.dones()[i]) {
         if (o.style_eval) {
           const humanoid::HumanoidPose& p = env.pose(i);
@@ -373,6 +390,20 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       } else {
         t.success = !t.fell && !t.force_end && t.success_step >= 0;
         t.steps_completed = t.success ? 1 : 0;
+      }
+      if (recording[i]) {
+        recording[i]->EndKeyframe(t.success,
+                                  fmt::format("{}; {} steps; goal error {:.3f} m (least {:.3f} m)",
+                                              t.fell        ? "fell"
+                                              : t.force_end ? "ended by the task"
+                                              : t.success   ? "succeeded"
+                                                            : "timed out",
+                                              t.length, t.contact_error, t.min_contact_error));
+        const io::MotionRecord r = recording[i]->Finish();
+        const std::string stem = "trial_" + std::to_string(trial[i]);
+        io::SaveMotionRecord(r, o.record_dir / (stem + ".json"));
+        io::ExportGltf(r, setup.context.scene.get(), o.record_dir / (stem + ".glb"));
+        recording[i].reset();
       }
       ++finished;
       trial[i] = next < o.trials ? next++ : -1;

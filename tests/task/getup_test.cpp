@@ -279,6 +279,19 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
                   0.15 * std::exp(-2 * 0.16) + 0.15 * std::exp(-2 * 0.49),
               1e-9);
   EXPECT_LT(kFeetPhaseWeight + (1 - kFeetPhaseWeight) * seated_rise, 0.45);
+  // The same seat with the feet 0.32 m ahead of the upper body (as the clips start): the
+  // balance factor by hand. Tipping back (upper body 0.25 m behind, feet 0.45 m ahead, pelvis
+  // a little higher) earns less than sitting, so that failed rise no longer pays.
+  Rise seated_feet = seated;
+  seated_feet.feet_xy = {0.32, 0};
+  const double height =
+      0.4 * std::exp(-20 * 0.39 * 0.39) + 0.3 * std::exp(-8 * 0.16) + 0.15 * std::exp(-2 * 0.16);
+  EXPECT_NEAR(GetUpSkill::RiseReward(seated_feet, {0, 0}, head),
+              height * (0.6 + 0.4 * std::exp(-10 * 0.32 * 0.32)) + 0.15 * std::exp(-2 * 0.49),
+              1e-9);
+  Rise tipped{0.6, 1.0, 0.9, 0.7, {0.7, 0}, {-0.25, 0}, {0.45, 0}};
+  EXPECT_LT(GetUpSkill::RiseReward(tipped, {0, 0}, head),
+            GetUpSkill::RiseReward(seated_feet, {0, 0}, head));
 
   SkillConfig c = GetUpConfig();
   c.reference_init_prob = 0;

@@ -49,6 +49,11 @@ struct PolicyEvalOptions {
   bool style_eval = false;
   std::filesystem::path style_captions;  ///< {"queries": [{caption, clip}]} ("" = test set).
   std::filesystem::path style_model;     ///< Motion–text model ("" = the policy's or default).
+  /// When set, the first record_trials trials are written to this folder as trial_<k>.json
+  /// (io::MotionRecord, one frame per control step, the outcome as its keyframe) and
+  /// trial_<k>.glb (the scene and the animated character), to watch what a policy does.
+  std::filesystem::path record_dir;
+  int record_trials = 0;  ///< How many trials --record keeps (from trial 0).
 };
 
 /// One trial.

@@ -166,6 +166,9 @@ GetUpSkill::RiseInputs GetUpSkill::RiseInputsOf(const humanoid::BodyStates& b) {
   x.pelvis_up = (b.rot[humanoid::kPelvis] * Eigen::Vector3d::UnitZ()).z();
   x.torso_up = (b.rot[humanoid::kTorso] * Eigen::Vector3d::UnitZ()).z();
   x.pelvis_xy = b.pos[humanoid::kPelvis].head<2>();
+  x.upper_xy =
+      (b.pos[humanoid::kPelvis] + b.pos[humanoid::kTorso] + b.pos[humanoid::kHead]).head<2>() / 3.0;
+  x.feet_xy = 0.5 * (b.pos[humanoid::kLeftFoot] + b.pos[humanoid::kRightFoot]).head<2>();
   return x;
 }
 
@@ -176,7 +179,9 @@ double GetUpSkill::RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand,
   const double height = 0.4 * std::exp(-20.0 * dp * dp) + 0.3 * std::exp(-8.0 * dh * dh) +
                         0.15 * std::exp(-2.0 * dh * dh);
   const double upright = 0.6 + 0.2 * std::max(x.pelvis_up, 0.0) + 0.2 * std::max(x.torso_up, 0.0);
-  return upright * height + 0.15 * std::exp(-2.0 * (stand - x.pelvis_xy).squaredNorm());
+  const double balance = std::exp(-10.0 * (x.upper_xy - x.feet_xy).squaredNorm());
+  return upright * height * (0.6 + 0.4 * balance) +
+         0.15 * std::exp(-2.0 * (stand - x.pelvis_xy).squaredNorm());
 }
 
 Eigen::Vector3d GetUpSkill::FootTarget(const Eigen::Vector2d& stand,

@@ -19,17 +19,22 @@
 //     the floor); r = w·contact reward (contact_reward.h, w = kFeetPhaseWeight) with anchor s
 //     and g_j the nearest disk points of the feet. The phase ends when both feet are within
 //     contact_success_threshold of the disk.
-//   rise phase: r = w + (1 − w)·RiseReward, RiseReward = U·H + 0.15·exp(−2·‖s − x_pelvis‖²),
+//   rise phase: r = w + (1 − w)·RiseReward, RiseReward = U·H·(0.6 + 0.4·B) + 0.15·S,
 //     H = 0.4·exp(−20·dp²) + 0.3·exp(−8·dh²) + 0.15·exp(−2·dh²), dp = max(h*_p − z_pelvis, 0),
-//     dh = max(h*_h − z_head, 0), U = 0.6 + 0.2·max(up_pelvis, 0) + 0.2·max(up_torso, 0);
-//     h*_p, h*_h the standing pelvis and head heights, up the bodies' up axes (z components).
-//     History: a pelvis-only reward had a stable half-way optimum (pelvis at 0.68 m, torso
-//     folded, head at pelvis height; first campaign, 0 % success), hence the head and
-//     upright factors. The next form (0.5 + 0.5·(0.3·exp(−10·dp²) + 0.3·exp(−4·dh²) + up and
-//     stand terms)) paid 0.77 for sitting still and 0.83 for a crouch against 1.0 for
-//     standing, while a failed rise ends the episode: the policy rose to a crouch or fell
-//     forward, 0/100 in evaluation (chunk 4). Now sitting pays ~0.4 and the crouch ~0.55,
-//     and the wide head kernel still grades a lying head.
+//     dh = max(h*_h − z_head, 0), U = 0.6 + 0.2·max(up_pelvis, 0) + 0.2·max(up_torso, 0),
+//     B = exp(−10·‖m − f‖²) with m the mean of the pelvis, torso and head (xy) and f the feet's
+//     midpoint, S = exp(−2·‖s − x_pelvis‖²); h*_p, h*_h the standing pelvis and head heights,
+//     up the bodies' up axes (z components). History: a pelvis-only reward had a stable
+//     half-way optimum (pelvis at 0.68 m, torso folded, head at pelvis height; first
+//     campaign, 0 % success), hence the head and upright factors. The next form (0.5 + 0.5·
+//     (0.3·exp(−10·dp²) + 0.3·exp(−4·dh²) + up and stand terms)) paid 0.77 for sitting still
+//     and 0.83 for a crouch against 1.0 for standing, while a failed rise ends the episode: the
+//     policy rose to a crouch or fell, 0/100 in evaluation (chunk 4). Recorded seat trials
+//     (eval_policy --record) then showed how it fell: legs straightened, feet pushed 0.3 m
+//     forward, trunk tipped back, head 0.5 m behind the pelvis and down within 0.7 s; B pays
+//     for rising over the feet instead (the clips' seat-off has the weight over the feet).
+//     Sitting now pays ~0.37 and the crouch ~0.55; the wide head kernel still grades a lying
+//     head.
 // The observation always carries the pelvis goal (s at standing height), plus the feet goals
 // in the feet phase. Success (StandingClear): standing upright (pelvis and head high enough,
 // pelvis and torso up axes within ~37° of vertical) with nothing but the feet touching
@@ -110,6 +115,9 @@ class GetUpSkill : public ObjectSkill {
     double pelvis_up = 0;                                 ///< z component of the pelvis up axis.
     double torso_up = 0;                                  ///< z component of the torso up axis.
     Eigen::Vector2d pelvis_xy = Eigen::Vector2d::Zero();  ///< Pelvis (world xy).
+    /// Mean of the pelvis, torso and head origins (world xy): where the upper body's weight is.
+    Eigen::Vector2d upper_xy = Eigen::Vector2d::Zero();
+    Eigen::Vector2d feet_xy = Eigen::Vector2d::Zero();  ///< Midpoint of the feet (world xy).
   };
   /// The rise inputs of body states b.
   static RiseInputs RiseInputsOf(const humanoid::BodyStates& b);
