@@ -6,6 +6,7 @@
 #include "sims/core/config.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
+#include "sims/io/motion_record.h"
 #include "sims/learning/sim_vec_env.h"
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
@@ -91,6 +92,34 @@ TEST(PolicyEvalTest, WalkSmokeAndDeterminism) {
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["results"].size(), 3u);
   EXPECT_EQ(EvaluatePolicy(o).ToJson().dump(), j.dump());  // same seed, same report
+}
+
+// --record: the first trials' motions, one frame per control step plus the start, with the
+// outcome as their keyframe, and a glTF of scene and character beside each; later trials and
+// the report itself are unchanged by recording.
+TEST(PolicyEvalTest, RecordWritesTheFirstTrialsMotions) {
+  task::SkillConfig sc;
+  sc.skill = "sit";
+  sc.object.num_objects = 2;
+  const fs::path policy = TinyPolicy(sc, 12, "eval_record");
+  PolicyEvalOptions o = TwoEnvOptions(policy, 3);
+  const std::string plain = EvaluatePolicy(o).ToJson().dump();
+  o.record_dir = sims::testing::TempDir("eval_record_out");
+  o.record_trials = 2;
+  const PolicyEvalReport r = EvaluatePolicy(o);
+  EXPECT_EQ(r.ToJson().dump(), plain);
+  for (int k = 0; k < 2; ++k) {
+    const fs::path motion = o.record_dir / ("trial_" + std::to_string(k) + ".json");
+    ASSERT_TRUE(fs::exists(motion)) << motion;
+    EXPECT_GT(fs::file_size(o.record_dir / ("trial_" + std::to_string(k) + ".glb")), 1000u);
+    const io::MotionRecord m = io::LoadMotionRecord(motion);
+    EXPECT_EQ(m.num_frames(), r.results[k].length) << "the start and every step but the last";
+    ASSERT_EQ(m.keyframes.size(), 1u);
+    EXPECT_EQ(m.keyframes[0].skill, "sit");
+    EXPECT_EQ(m.keyframes[0].success, r.results[k].success);
+    EXPECT_NE(m.keyframes[0].detail.find("steps"), std::string::npos);
+  }
+  EXPECT_FALSE(fs::exists(o.record_dir / "trial_2.json"));
 }
 
 // The success path: a walk task whose success radius reaches past the 3–5 m evaluation
