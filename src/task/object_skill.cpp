@@ -46,6 +46,8 @@ void ObjectParams::Validate() const {
   Require(spawn_arc_deg > 0 && spawn_arc_deg <= 360, "spawn_arc_deg", "an angle in (0, 360]");
   Require(spawn_curriculum_step > 0 && spawn_curriculum_step <= 1, "spawn_curriculum_step",
           "a level step in (0, 1]");
+  Require(spawn_full_range_share >= 0 && spawn_full_range_share <= 1, "spawn_full_range_share",
+          "a share in [0, 1]");
   Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
   Require(reference_window >= 0, "reference_window", "a non-negative duration (s), 0 = off");
   Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
@@ -345,8 +347,10 @@ bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
 
 Eigen::Vector2d ObjectSkill::SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const {
   const auto& o = config_.object;
-  const double far =
-      o.spawn_min_distance + env_[env_id].level * (o.spawn_max_distance - o.spawn_min_distance);
+  // Drawn only when the share is set, so configs without it keep their random streams.
+  const bool full = o.spawn_full_range_share > 0 && rng.Bernoulli(o.spawn_full_range_share);
+  const double level = full ? 1.0 : env_[env_id].level;
+  const double far = o.spawn_min_distance + level * (o.spawn_max_distance - o.spawn_min_distance);
   const double half_arc = 0.5 * o.spawn_arc_deg * M_PI / 180.0;
   Eigen::Vector2d p = g.center;
   for (int attempt = 0; attempt < 32; ++attempt) {

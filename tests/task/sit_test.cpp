@@ -276,6 +276,33 @@ TEST(SitSkillTest, SpawnCurriculumWidensWithSuccess) {
   EXPECT_EQ(dynamic_cast<SitSkill*>(full.setup.skill.get())->spawn_level(0), 1.0);
 }
 
+// spawn_full_range_share: at level 0 a share of default starts still comes from the whole
+// range, the rest from spawn_min_distance.
+TEST(SitSkillTest, FullRangeShareKeepsLongApproachesAtLevelZero) {
+  SkillConfig c = SitConfig();
+  c.reference_init_prob = 0;
+  c.object.spawn_curriculum = true;
+  c.object.spawn_full_range_share = 0.5;
+  c.object.spawn_min_distance = 1.0;
+  c.object.spawn_max_distance = 4.0;
+  auto s = MakeSkillEnv(c, 1);
+  auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
+  int near = 0, wide = 0;
+  for (int k = 0; k < 40; ++k) {
+    s.env->ResetEnv(0);
+    sit->SetSpawnLevel(0, 0.0);  // whatever the last (failed) episode did to it
+    const ObjectGeometry& g = sit->geometry(0);
+    const double d = (s.env->pose(0).root_pos.head<2>() - g.center).norm() - g.radius;
+    EXPECT_GE(d, 1.0 - 1e-9);
+    EXPECT_LE(d, 4.0 + 1e-9);
+    (std::abs(d - 1.0) < 1e-9 ? near : wide) += 1;
+  }
+  EXPECT_GE(near, 10);
+  EXPECT_GE(wide, 10);
+  c.object.spawn_full_range_share = 1.5;
+  EXPECT_THROW(c.object.Validate(), Error);
+}
+
 TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
   SkillConfig c = SitConfig();
   c.reference_init_prob = 0;
