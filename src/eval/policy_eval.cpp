@@ -309,13 +309,13 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   // its motion (one frame per control step) is labelled when it ends.
   std::vector<std::vector<motion::MotionFrame>> motion(n_env);
   // --record: the first record_trials trials' frames, written when each trial ends.
-  if (o.record_trials > 0 && !o.record_dir.empty())
-    std::filesystem::create_directories(o.record_dir);
+  const int record_trials = o.record_dir.empty() ? 0 : o.record_trials;
+  if (record_trials > 0) std::filesystem::create_directories(o.record_dir);
   std::vector<std::unique_ptr<io::MotionRecordBuilder>> recording(n_env);
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
     rep.results[trial[i]].start = setup.skill->start_label(i);
-    if (trial[i] < o.record_trials && !o.record_dir.empty()) {
+    if (trial[i] < record_trials) {
       recording[i] =
           std::make_unique<io::MotionRecordBuilder>(setup.context.humanoid, 1.0 / rep.control_dt);
       recording[i]->SetTitle(fmt::format("{} trial {}", sc.skill, trial[i]));

@@ -143,7 +143,8 @@ Eigen::Vector2d WalkSkill::SampleTarget(const Eigen::Vector2d& from, Rng& rng) c
 void WalkSkill::SetTarget(int env_id, const Eigen::Vector2d& target_xy) {
   walk_[env_id].target = target_xy;
   walk_[env_id].goal = target_xy;
-  walk_[env_id].path = scene::PathFollower(target_xy, {});
+  // Among furniture the next step would move the goal back onto the old path.
+  if (free_space_) walk_[env_id].path = scene::PathFollower(target_xy, {});
   walk_[env_id].hold = 0;
   ClearGoals(env_id);
   SetGoal(env_id, humanoid::kCjPelvis, {target_xy.x(), target_xy.y(), kStandingPelvisHeight});
@@ -156,10 +157,14 @@ void WalkSkill::OnReset(const sim::EnvView& view, Rng& rng) {
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
   walk_[i].prev_velocity = view.pose->root_lin_vel.head<2>();
   if (posture_) walk_[i].pose_average = view.pose->dof_pos;
+  NewGoal(i, root);
+}
+
+void WalkSkill::NewGoal(int i, const Eigen::Vector2d& from) {
   if (free_space_)
-    SampleRoomGoal(i, root, walk_[i].target_rng);
+    SampleRoomGoal(i, from, walk_[i].target_rng);
   else
-    SetTarget(i, SampleTarget(root, walk_[i].target_rng));
+    SetTarget(i, SampleTarget(from, walk_[i].target_rng));
 }
 
 bool WalkSkill::BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) {
@@ -246,10 +251,7 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   walk_[i].hold = r.success ? walk_[i].hold + 1 : 0;
   r.completed = walk_[i].hold >= config_.success_hold_steps;
   if (r.completed && config_.walk.resample_target_on_success) {
-    if (free_space_)
-      SampleRoomGoal(i, root, walk_[i].target_rng);
-    else
-      SetTarget(i, SampleTarget(root, walk_[i].target_rng));
+    NewGoal(i, root);
   } else if (free_space_) {
     FollowPath(i, root);  // the next observation's pelvis goal
   }
@@ -282,8 +284,7 @@ void WalkSkill::SerializeSkillState(int env_id, StateArchive* a) {
       st.path.Restore(static_cast<size_t>(segment), progress);
     }
   } else if (a->loading()) {
-    st.goal = st.target;
-    st.path = scene::PathFollower(st.target, {});
+    st.goal = st.target;  // on open floor the goal is the target
   }
   if (!posture_) return;
   if (!a->loading() || a->left() > 0) {

@@ -108,6 +108,8 @@ class WalkSkill : public Skill {
   Eigen::Vector2d FreePointInRoom(int k, Rng& rng) const;
   void SampleRoomGoal(int env_id, const Eigen::Vector2d& from, Rng& rng);
   void FollowPath(int env_id, const Eigen::Vector2d& root);
+  // The next goal from `from`: in env i's room along A*, or on open floor.
+  void NewGoal(int env_id, const Eigen::Vector2d& from);
 
   std::vector<WalkState> walk_;  // per env
   // Among furniture: the free-space grid and each room's floor box (min, max corners).
