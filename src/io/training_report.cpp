@@ -219,6 +219,7 @@ std::vector<ReportPlot> DefaultTrainingPlots() {
       {"Success and falls (fraction of episodes)", {"success_rate", "fall_rate", "force_end_rate"}},
       {"Success by start (reference vs default)",
        {"success_rate_reference", "success_rate_default"}},
+      {"Curriculum level (spawn distance or backplay window, 0-1)", {"curriculum_level"}},
       {"Discriminator accuracy", {"disc_acc_demo", "disc_acc_agent"}},
       {"Throughput (samples/s)", {"env_samples_per_s", "train_samples_per_s"}},
       {"PPO step size (clip fraction, KL)", {"clip_fraction", "kl"}},

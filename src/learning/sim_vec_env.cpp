@@ -1,5 +1,8 @@
 #include "sims/learning/sim_vec_env.h"
 
+#include <cmath>
+#include <limits>
+
 namespace sims::learning {
 
 SimVecEnv::SimVecEnv(std::shared_ptr<sim::BatchedEnv> env) : env_(std::move(env)) {
@@ -34,6 +37,19 @@ std::vector<float> SimVecEnv::initial_action_mean() const {
 }
 
 const int* SimVecEnv::style_ids() const { return env_->task() ? styles_.data() : nullptr; }
+
+double SimVecEnv::curriculum_level() const {
+  double sum = 0;
+  int count = 0;
+  if (env_->task())
+    for (int i = 0; i < env_->num_envs(); ++i) {
+      const double level = env_->task()->curriculum_level(i);
+      if (std::isnan(level)) continue;
+      sum += level;
+      ++count;
+    }
+  return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+}
 
 void SimVecEnv::RefreshStyles() {
   if (!env_->task()) return;

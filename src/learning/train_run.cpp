@@ -60,7 +60,8 @@ const std::vector<std::string>& CsvColumns() {
                                                 "success_rate_reference",
                                                 "success_rate_default",
                                                 "kl",
-                                                "learning_rate"};
+                                                "learning_rate",
+                                                "curriculum_level"};
   return cols;
 }
 
@@ -98,7 +99,8 @@ std::string CsvRow(const IterationStats& s, const IterationTiming& timing) {
                       s.success_rate_reference,
                       s.success_rate_default,
                       s.kl,
-                      s.learning_rate};
+                      s.learning_rate,
+                      s.curriculum_level};
   std::ostringstream out;
   out.precision(7);
   for (size_t i = 0; i < std::size(v); ++i) out << (i ? "," : "") << v[i];

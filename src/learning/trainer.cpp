@@ -724,6 +724,8 @@ IterationStats Trainer::RunIteration() {
 
   // ---- statistics -------------------------------------------------------------------------
   // Sums over all ranks, so every rank (and rank 0's log) reports the whole run's figures.
+  const double level = m.env->curriculum_level();
+  const bool has_level = !std::isnan(level);
   double sums[] = {roll.return_sum,
                    roll.length_sum,
                    roll.success_sum,
@@ -744,7 +746,9 @@ IterationStats Trainer::RunIteration() {
                    roll.reference_episodes,
                    roll.reference_success,
                    roll.default_success,
-                   u.kl};
+                   u.kl,
+                   has_level ? level : 0.0,
+                   has_level ? 1.0 : 0.0};
   if (m.comm) m.comm->AllReduceSum(sums, static_cast<int64_t>(std::size(sums)));
   const double episodes = sums[4];
   const double batch_size = static_cast<double>(T * N * m.world);
@@ -770,6 +774,7 @@ IterationStats Trainer::RunIteration() {
   st.clip_fraction = sums[15] / s;
   st.kl = sums[20] / s;
   st.learning_rate = m.learning_rate;
+  st.curriculum_level = sums[22] > 0 ? sums[21] / sums[22] : std::nan("");
   st.force_end_rate = episodes > 0 ? sums[16] / episodes : std::nan("");
   st.reference_start_share = episodes > 0 ? sums[17] / episodes : std::nan("");
   st.success_rate_reference = sums[17] > 0 ? sums[18] / sums[17] : std::nan("");

@@ -220,6 +220,11 @@ void ObjectSkill::SetSpawnLevel(int env_id, double level) {
   env_[env_id].level = level;
 }
 
+double ObjectSkill::curriculum_level(int env_id) const {
+  return config_.object.spawn_curriculum ? env_[env_id].level
+                                         : std::numeric_limits<double>::quiet_NaN();
+}
+
 double ObjectSkill::ClipContactTime(int clip) const {
   return context_.motions->clip(clip).duration();
 }

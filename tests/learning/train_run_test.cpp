@@ -70,6 +70,29 @@ TEST(TrainRunTest, LogsEndToEndRateAndTimeSplit) {
   for (const char* name : {"fall_rate", "force_end_rate", "reference_start_share",
                            "success_rate_reference", "success_rate_default"})
     EXPECT_GE(Column(t, name), 0) << name;
+  // Walk runs no curriculum: its level column is empty (NaN).
+  for (int r = 0; r < 3; ++r) EXPECT_TRUE(std::isnan(t.values[Column(t, "curriculum_level")][r]));
+}
+
+// An object skill with the spawn curriculum logs its envs' mean level: every env starts at
+// level 0 and a level moves by at most one step per episode.
+TEST(TrainRunTest, LogsTheCurriculumLevel) {
+  const auto dir = sims::testing::TempDir("train_run_level");
+  TrainConfig c = sims::testing::TinyTrainConfig("sit");
+  c.skill.object.spawn_curriculum = true;
+  c.skill.object.spawn_curriculum_step = 0.1;
+  c.skill.reference_init_prob = 0;
+  c.iterations = 2;
+  TrainOptions o;
+  o.out_dir = dir;
+  EXPECT_EQ(RunTraining(c, o), 2);
+  const io::CsvTable t = io::ReadCsvTable(dir / "log.csv");
+  ASSERT_EQ(t.rows(), 2);
+  for (int r = 0; r < 2; ++r) {
+    const double level = t.values[Column(t, "curriculum_level")][r];
+    EXPECT_GE(level, 0.0);
+    EXPECT_LE(level, 0.1 + 1e-12);
+  }
 }
 
 // A run logged by an older train_policy (fewer trailing columns) resumes: the header becomes

@@ -179,6 +179,89 @@ TEST(GetUpSkillTest, ReferenceWindowReachesIntoTheRiseOnlyInTraining) {
   EXPECT_EQ(eval.getup.reference_max_fraction, 0.25);
 }
 
+// Backplay: reference starts begin near the end of the rise (level 0) and reach back towards
+// the seated start as the env's reference episodes succeed; a failure moves back half a step;
+// fall-state episodes leave the level alone; evaluation has no backplay; the level survives a
+// snapshot, and a snapshot from before backplay loads with level 0.
+TEST(GetUpSkillTest, BackplayStartsRisenAndReachesBackWithSuccess) {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {"chair"};
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
+  c.getup.backplay_end = 0.9;
+  c.getup.backplay_step = 0.5;
+  c.success_hold_steps = 2;
+  c.object.max_contact_force = 0;
+  const int n = 8;
+  auto s = MakeSkillEnv(c, n);
+  auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  ASSERT_NE(getup, nullptr);
+  // Level 0: every start is the clip at 0.9, nearly risen (the seated first quarter stays
+  // below standing height, as ReferenceWindowReachesIntoTheRiseOnlyInTraining shows).
+  double lowest = 1e9;
+  for (int i = 0; i < n; ++i) {
+    EXPECT_EQ(getup->backplay_level(i), 0.0);
+    EXPECT_EQ(getup->curriculum_level(i), 0.0);
+    ASSERT_TRUE(getup->reference_start(i));
+    lowest = std::min(lowest, s.env->bodies(i).pos[humanoid::kPelvis].z());
+  }
+  EXPECT_GT(lowest, c.getup.standing_pelvis_height - 0.1);
+  // A completed episode raises the level by a step, a failed one lowers it by half a step.
+  auto complete = [&]() {
+    const Eigen::Vector2d stand = getup->stand_point(0);
+    s.env->SetState(0, PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.89)));
+    for (int k = 0; k < c.success_hold_steps; ++k) getup->Step(ViewOf(*s.env, 0));
+    ASSERT_GE(getup->hold(0), c.success_hold_steps);
+    s.env->ResetEnv(0);
+  };
+  complete();
+  EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.5);
+  complete();
+  EXPECT_DOUBLE_EQ(getup->backplay_level(0), 1.0);
+  complete();
+  EXPECT_DOUBLE_EQ(getup->backplay_level(0), 1.0);  // capped
+  s.env->ResetEnv(0);                               // a failed episode
+  EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.75);
+  // Near level 1 the window reaches the seated start: some starts sit well below the lowest
+  // level-0 start. (A reset first books the failed episode: 1 − step/2.)
+  SkillConfig wide_config = c;
+  wide_config.getup.backplay_step = 0.01;
+  auto wide = MakeSkillEnv(wide_config, n);
+  auto* wide_getup = dynamic_cast<GetUpSkill*>(wide.setup.skill.get());
+  double seated = 1e9;
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < n; ++i) {
+      wide_getup->SetBackplayLevel(i, 1.0);
+      wide.env->ResetEnv(i);
+      EXPECT_DOUBLE_EQ(wide_getup->backplay_level(i), 0.995);
+      seated = std::min(seated, wide.env->bodies(i).pos[humanoid::kPelvis].z());
+    }
+  EXPECT_LT(seated, lowest - 0.1);
+  // Snapshots carry the level; one without it (written before backplay) reads as level 0.
+  const std::vector<double> saved = getup->SaveEnvState(0);
+  getup->SetBackplayLevel(0, 0.0);
+  getup->LoadEnvState(0, saved);
+  EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.75);
+  const std::vector<double> old(saved.begin(), saved.end() - 1);
+  getup->LoadEnvState(0, old);
+  EXPECT_EQ(getup->backplay_level(0), 0.0);
+  // Fall-state episodes leave the level alone.
+  SkillConfig falls = c;
+  falls.reference_init_prob = 0.0;
+  auto f = MakeSkillEnv(falls, 1);
+  auto* fall_getup = dynamic_cast<GetUpSkill*>(f.setup.skill.get());
+  fall_getup->SetBackplayLevel(0, 0.5);
+  f.env->ResetEnv(0);
+  EXPECT_EQ(fall_getup->backplay_level(0), 0.5);
+  // Evaluation turns backplay off; without it the level is not a curriculum (NaN).
+  SkillConfig eval = c;
+  FindSkill("getup").configure_eval(&eval);
+  EXPECT_EQ(eval.getup.backplay_end, 0.0);
+  SkillConfig plain = GetUpConfig();
+  auto p = MakeSkillEnv(plain, 1);
+  EXPECT_TRUE(std::isnan(p.setup.skill->curriculum_level(0)));
+}
+
 // Held-out beds reach 0.62 m, past the bed clips (0.42–0.53 m) and their 5 cm: a lying start is
 // lifted onto a higher bed (getup_bed_raise), so every held-out bed gets bed starts.
 TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {

@@ -33,6 +33,7 @@ class SimVecEnv : public VecEnv {
   const uint8_t* reference_starts() const override { return env_->reference_starts(); }
   const float* amp_observations() const override { return env_->amp_observations(); }
   const int* style_ids() const override;
+  double curriculum_level() const override;
   std::vector<float> initial_action_mean() const override;
   std::string SaveState() const override { return env_->SaveState(); }
   void LoadState(const std::string& state) override { env_->LoadState(state); }

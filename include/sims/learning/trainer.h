@@ -40,6 +40,7 @@ struct IterationStats {
   double clip_fraction = 0;           ///< Fraction of clipped ratios.
   double kl = 0;                      ///< Mean KL(old ‖ new) per minibatch step.
   double learning_rate = 0;           ///< The learning rate after this update.
+  double curriculum_level = 0;        ///< Mean curriculum level after the rollout (NaN: none).
   double env_samples_per_s = 0;       ///< Collection throughput (incl. policy inference).
   double train_samples_per_s = 0;     ///< Update throughput (samples × epochs / s).
   double update_gflop = 0;            ///< Estimated GFLOP spent in the update.

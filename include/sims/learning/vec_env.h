@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,6 +54,8 @@ class VecEnv {
   virtual const sim::EndReason* end_reasons() const { return nullptr; }
   /// 1 where this step's episode began from a reference state [num_envs], or nullptr (none).
   virtual const uint8_t* reference_starts() const { return nullptr; }
+  /// Mean curriculum level over the envs that run one (TaskHook::curriculum_level), or NaN.
+  virtual double curriculum_level() const { return std::numeric_limits<double>::quiet_NaN(); }
   /// AMP observations of this transition [num_envs, amp_obs_dim()].
   virtual const float* amp_observations() const = 0;
   /// Action the untrained policy should output on average (empty = zeros). For the humanoid

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,12 @@ class TaskHook {
   virtual int style_id(int env_id) const {
     (void)env_id;
     return -1;
+  }
+  /// Env `env_id`'s curriculum level in [0, 1] (spawn distance, backplay window...) for the
+  /// training log; NaN when the skill runs no curriculum.
+  virtual double curriculum_level(int env_id) const {
+    (void)env_id;
+    return std::numeric_limits<double>::quiet_NaN();
   }
   /// Per-env task state (goals, counters) so training can resume bit-exactly.
   virtual std::vector<double> SaveEnvState(int env_id) const {

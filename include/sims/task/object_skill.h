@@ -163,6 +163,8 @@ class ObjectSkill : public Skill {
   double spawn_level(int env_id) const { return env_[env_id].level; }
   /// Sets env i's spawn level (tests, tools).
   void SetSpawnLevel(int env_id, double level);
+  /// The spawn level when the spawn curriculum runs, else NaN.
+  double curriculum_level(int env_id) const override;
   /// Whether env i's episode began from a reference (clip) state.
   bool reference_start(int env_id) const { return env_[env_id].reference; }
   /// Latest start time (s) of reference starts from library clip `clip` (−1: not used).

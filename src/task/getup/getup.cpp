@@ -97,6 +97,9 @@ void GetUpParams::Validate() const {
   Require(bed_raise >= 0 && bed_raise <= 0.5, "getup_bed_raise", "a height in [0, 0.5] m");
   Require(reference_max_fraction > 0 && reference_max_fraction <= 1, "getup_reference_max_fraction",
           "a fraction in (0, 1]");
+  Require(backplay_end >= 0 && backplay_end <= 1, "getup_backplay_end",
+          "a fraction in [0, 1] (0 = no backplay)");
+  Require(backplay_step > 0 && backplay_step <= 1, "getup_backplay_step", "a step in (0, 1]");
 }
 
 GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
@@ -205,7 +208,7 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   if (floor) {
     const int clip = floor_clips_[rng.UniformInt(static_cast<int64_t>(floor_clips_.size()))];
     const auto& c = context_.motions->clip(clip);
-    const double t = rng.Uniform(0.0, config_.getup.reference_max_fraction * c.duration());
+    const double t = ReferenceTime(i, c.duration(), 1.0, rng);
     Eigen::Vector2d p;
     if (!ClearFloorPoint(i, kLyingReach, rng, &p)) return false;
     const Eigen::Vector2d root = context_.motions->StateAt(clip, t).pose.root_pos.head<2>();
@@ -222,13 +225,40 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   const int clip = ChooseFurnitureClip(furniture_clips_, geometry(i), lateral, rng, &placement,
                                        bed ? config_.getup.bed_raise : kMaxClipHeightMismatch);
   if (clip < 0) return false;
-  const double f = placement.dz > kMaxClipHeightMismatch
-                       ? std::min(config_.getup.reference_max_fraction, kSeatedFraction)
-                       : config_.getup.reference_max_fraction;
-  const double t = rng.Uniform(0.0, f * context_.motions->clip(clip).duration());
+  const double t =
+      ReferenceTime(i, context_.motions->clip(clip).duration(),
+                    placement.dz > kMaxClipHeightMismatch ? kSeatedFraction : 1.0, rng);
   PlaceReference(i, clip, t, placement, init);
   getup_[i].start = bed ? kBedStart : kSeatStart;
   return true;
+}
+
+double GetUpSkill::ReferenceTime(int i, double duration, double max_fraction, Rng& rng) const {
+  const auto& p = config_.getup;
+  if (p.backplay_end <= 0)
+    return rng.Uniform(0.0, std::min(p.reference_max_fraction, max_fraction) * duration);
+  const double end = std::min(p.backplay_end, max_fraction);
+  return rng.Uniform((1.0 - getup_[i].backplay) * end * duration, end * duration);
+}
+
+void GetUpSkill::SampleInitialState(int i, Rng& rng, sim::InitialState* init) {
+  // Learns from the episode that just ended, as the spawn curriculum does (fall-state starts
+  // have no clip time and leave the level alone).
+  const double step = config_.getup.backplay_step;
+  if (config_.getup.backplay_end > 0 && env_[i].started && env_[i].reference) {
+    const bool done = env_[i].hold >= config_.success_hold_steps;
+    getup_[i].backplay = std::clamp(getup_[i].backplay + (done ? step : -0.5 * step), 0.0, 1.0);
+  }
+  ObjectSkill::SampleInitialState(i, rng, init);
+}
+
+double GetUpSkill::curriculum_level(int i) const {
+  return config_.getup.backplay_end > 0 ? getup_[i].backplay : ObjectSkill::curriculum_level(i);
+}
+
+void GetUpSkill::SetBackplayLevel(int i, double level) {
+  SIMS_CHECK(level >= 0 && level <= 1);
+  getup_[i].backplay = level;
 }
 
 void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
@@ -331,6 +361,12 @@ void GetUpState::Serialize(StateArchive* a) {
   a->Int("phase", &phase, GetUpSkill::kFeetPhase, GetUpSkill::kRisePhase);
   a->Int("start", &start, GetUpSkill::kSeatStart, GetUpSkill::kFallStart);
   a->Reals("stand", &stand);
+  // Snapshots from before backplay existed end here: their level is 0.
+  if (!a->loading() || a->left() > 0)
+    a->Real("backplay", &backplay);
+  else
+    backplay = 0;
+  backplay = std::clamp(backplay, 0.0, 1.0);
 }
 
 void GetUpSkill::SerializeTaskState(int i, StateArchive* a) { getup_[i].Serialize(a); }
@@ -348,7 +384,10 @@ SkillInfo GetUpSkillInfo() {
     return std::make_shared<GetUpSkill>(c, ctx);
   };
   // Evaluation starts seated or lying, whatever share of the rise training started from.
-  info.configure_eval = [](SkillConfig* c) { c->getup.reference_max_fraction = kSeatedFraction; };
+  info.configure_eval = [](SkillConfig* c) {
+    c->getup.reference_max_fraction = kSeatedFraction;
+    c->getup.backplay_end = 0;
+  };
   return info;
 }
 

@@ -30,6 +30,17 @@ struct GetUpParams {
   /// bed starts keep the first quarter: later in such a clip the character stands beside the
   /// bed, above the floor.
   double reference_max_fraction = 0.25;
+  /// Backplay, a reverse curriculum over the reference start time (Salimans & Chen 2018,
+  /// learning from a demonstration's end backwards): when > 0, reference starts draw their clip
+  /// time from [(1 − b)·e, e] instead, e this fraction of the clip (nearly risen) and b the
+  /// env's backplay level in [0, 1], which starts at 0 and moves with the env's reference
+  /// episodes (backplay_step). At b = 1 the window runs from seated or lying to e. Lifted bed
+  /// starts use e = 1/4 (see reference_max_fraction). 0 = off (evaluation turns it off).
+  double backplay_end = 0;
+  /// Backplay level change after a reference-start episode: + this when it succeeded, − half
+  /// of it when it did not, so the level settles where a third of the starts succeed (as the
+  /// object skills' spawn curriculum).
+  double backplay_step = 0.05;
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -41,6 +52,8 @@ struct GetUpParams {
     a->Visit(MakeNameValue("getup_standing_pelvis_height", &standing_pelvis_height));
     a->Visit(MakeNameValue("getup_bed_raise", &bed_raise));
     a->Visit(MakeNameValue("getup_reference_max_fraction", &reference_max_fraction));
+    a->Visit(MakeNameValue("getup_backplay_end", &backplay_end));
+    a->Visit(MakeNameValue("getup_backplay_step", &backplay_step));
   }
   /// Checks ranges.
   void Validate() const;
