@@ -36,6 +36,9 @@ int main(int argc, char** argv) {
   app.add_option("--reference-starts", o.reference_starts,
                  "share of trials started from motion clips as in training (0-1; default 0: "
                  "standing starts)");
+  app.add_flag("--training-starts", o.training_starts,
+               "keep the skill's training start settings (get-up: the reach into the rise or "
+               "the backplay window from level 0) instead of its evaluation ones");
   app.add_option("--record", o.record_dir,
                  "write the first --record-trials trials' motions (trial_K.json) and scenes with "
                  "the animated character (trial_K.glb) to this folder");

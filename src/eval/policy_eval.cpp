@@ -251,7 +251,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
                     std::to_string(o.reference_starts));
   sc.reference_init_prob = o.reference_starts;
   if (!sc.style_conditioned && o.reference_starts == 0 && !o.style_eval) sc.motion.manifest.clear();
-  if (info.configure_eval) info.configure_eval(&sc);
+  if (info.configure_eval && !o.training_starts) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
   ec.num_envs = n_env;
   ec.seed = o.seed;

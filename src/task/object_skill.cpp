@@ -398,12 +398,34 @@ void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* in
   env_[env_id].reference = init->reference;
 }
 
+double FurnitureShare(const motion::MotionClip& clip, double pelvis_z) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int f = 0; f < clip.num_frames(); ++f) {
+    const double z = clip.FramePose(f).root_pos.z();
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  // Seated or lying, the pelvis origin rests up to kPelvisOnFurniture above the top.
+  const auto& prm = clip.meta().params;
+  const auto top = prm.find("furniture_height");
+  const double down = top != prm.end() ? std::max(lo, top->second + kPelvisOnFurniture) : lo;
+  if (!(hi - down > 1e-3)) return 1.0;
+  return std::clamp((hi - pelvis_z) / (hi - down), 0.0, 1.0);
+}
+
 void ObjectSkill::PlaceReference(int env_id, int clip, double t, const ClipPlacement& placement,
                                  sim::InitialState* init) {
   const motion::ReferenceState ref = context_.motions->StateAt(clip, t);
-  init->pose = placement.Apply(ref.pose);
+  // The height shift fits the clip's furniture to the object's, but the floor does not move:
+  // the shift applies in full while the character is down on the furniture and fades out as
+  // the pelvis rises to the clip's standing height, so standing and walking states (before a
+  // sit, after a get-up) keep their feet on the floor instead of up to kMaxClipHeightMismatch
+  // (beds: getup_bed_raise) inside or above it.
+  ClipPlacement p = placement;
+  if (p.dz != 0) p.dz *= FurnitureShare(context_.motions->clip(clip), ref.pose.root_pos.z());
+  init->pose = p.Apply(ref.pose);
   init->history.clear();
-  for (const auto& h : ref.history) init->history.push_back(placement.Apply(h));
+  for (const auto& h : ref.history) init->history.push_back(p.Apply(h));
   init->reference = true;
   SetStyle(env_id, clip);
 }

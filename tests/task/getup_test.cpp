@@ -262,6 +262,45 @@ TEST(GetUpSkillTest, BackplayStartsRisenAndReachesBackWithSuccess) {
   EXPECT_TRUE(std::isnan(p.setup.skill->curriculum_level(0)));
 }
 
+// A seat's height may differ from the clip's by up to kMaxClipHeightMismatch, and the clip is
+// shifted by the difference so that the pelvis sits on the seat; once risen, the shift fades
+// out (FurnitureShare) and the feet stand on the floor: late starts neither sink the soles into
+// the floor nor leave them hanging (a full 5 cm shift did both, and the contact solver kicked
+// the sunken feet out).
+TEST(GetUpSkillTest, RisenReferenceStartsStandOnTheFloor) {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {"chair", "armchair", "sofa", "stool"};
+  c.object.num_objects = 6;
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
+  c.getup.backplay_end = 0.9;  // level 0: every start at 0.9 of its clip, standing
+  const int n = 12;
+  auto s = MakeSkillEnv(c, n);
+  auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  const auto& lib = *s.setup.context.motions;
+  humanoid::MjDataPtr scratch = humanoid::MakeData(s.setup.context.humanoid->model());
+  humanoid::BodyStates standing;
+  humanoid::ForwardKinematics(*s.setup.context.humanoid, humanoid::HumanoidPose{}, scratch.get(),
+                              &standing);
+  const double foot_z = standing.pos[humanoid::kLeftFoot].z();
+  int seats = 0;
+  for (int i = 0; i < n; ++i) {
+    if (getup->start(i) != GetUpSkill::kSeatStart) continue;
+    ++seats;
+    const auto& b = s.env->bodies(i);
+    const double lowest = std::min(b.pos[humanoid::kLeftFoot].z(), b.pos[humanoid::kRightFoot].z());
+    EXPECT_NEAR(lowest, foot_z, 0.01) << "env " << i;
+  }
+  EXPECT_GE(seats, 8);
+  // The share itself: 1 seated or lying at the clip's start, 0 standing at its end.
+  for (int clip : lib.Find("getup")) {
+    const auto& k = lib.clip(clip);
+    if (!k.meta().params.count("furniture_height")) continue;
+    EXPECT_EQ(FurnitureShare(k, k.FramePose(0).root_pos.z()), 1.0) << k.meta().name;
+    EXPECT_EQ(FurnitureShare(k, k.FramePose(k.num_frames() - 1).root_pos.z() + 0.01), 0.0);
+  }
+}
+
 // Held-out beds reach 0.62 m, past the bed clips (0.42–0.53 m) and their 5 cm: a lying start is
 // lifted onto a higher bed (getup_bed_raise), so every held-out bed gets bed starts.
 TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {

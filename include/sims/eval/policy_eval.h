@@ -44,6 +44,10 @@ struct PolicyEvalOptions {
   bool held_out = true;                ///< Held-out object dimensions.
   sim::ObsAblation ablation;           ///< Inputs withheld from the policy (--no-text, ...).
   double reference_starts = 0;         ///< Share of trials started from motion clips (0–1).
+  /// Keeps the skill's training start settings instead of its evaluation ones (SkillInfo::
+  /// configure_eval): get-up's reach into the rise or its backplay window (levels from 0), a
+  /// diagnostic of what the policy trains on.
+  bool training_starts = false;
   /// Style evaluation (--style-eval): trial k walks with the z of a caption the motion–text
   /// model never trained on, cycling over the emotions, and its motion is classified.
   bool style_eval = false;

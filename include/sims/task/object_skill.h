@@ -100,6 +100,16 @@ struct ClipPlacement {
   Eigen::Vector3d Apply(const Eigen::Vector3d& p) const;
 };
 
+/// Highest pelvis origin above a seat or mattress top while seated or lying on it (m).
+inline constexpr double kPelvisOnFurniture = 0.15;
+
+/// How far the pelvis at height `pelvis_z` is down on the furniture in `clip`: 1 within
+/// kPelvisOnFurniture of the clip's furniture top (meta param furniture_height; without one, at
+/// the clip's lowest pelvis height), 0 at its highest (standing), linear in between; 1 for a
+/// clip whose pelvis height does not change. Reference starts scale the furniture height shift
+/// (ClipPlacement::dz) by it.
+double FurnitureShare(const motion::MotionClip& clip, double pelvis_z);
+
 /// The object frame of a seat or bed clip (meta params furniture_*; see motion/synthetic.h:
 /// the character starts at the origin facing +x, the furniture lies at x < front_x) expressed
 /// in clip coordinates, for an object with geometry `g`. Returns false when the clip carries no
