@@ -237,7 +237,8 @@ double GetUpSkill::ReferenceTime(int i, double duration, double max_fraction, Rn
   const auto& p = config_.getup;
   if (p.backplay_end <= 0)
     return rng.Uniform(0.0, std::min(p.reference_max_fraction, max_fraction) * duration);
-  const double end = std::min(p.backplay_end, max_fraction);
+  // Every clip, a lifted bed's too, since a risen start stands on the floor (FurnitureShare).
+  const double end = p.backplay_end;
   return rng.Uniform((1.0 - getup_[i].backplay) * end * duration, end * duration);
 }
 

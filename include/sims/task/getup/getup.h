@@ -148,7 +148,7 @@ class GetUpSkill : public ObjectSkill {
  private:
   void StartGetUp(int env_id, const humanoid::BodyStates& b);
   // A reference start time (s) in a clip of `duration` s for env i: the backplay window when
-  // backplay runs, else the first reference_max_fraction; neither past `max_fraction`.
+  // backplay runs, else the first reference_max_fraction but at most `max_fraction`.
   double ReferenceTime(int env_id, double duration, double max_fraction, Rng& rng) const;
   void SetGetUpGoals(int env_id, const humanoid::BodyStates& b, double* feet_sq, double* feet_max);
   // A free floor point for a body reaching `reach` m from its root, tried near env i's object
