@@ -99,8 +99,20 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
         (scene::NearestPointOnPart(scene.objects[g.object].parts[part], pelvis) - pelvis).norm();
     EXPECT_LT(d, 0.3);
     EXPECT_LT(pelvis.z(), c.getup.standing_pelvis_height);
-    // The stand point is the object's free floor point nearest to the pelvis.
-    EXPECT_FALSE(g.stand_points.empty());
+    // Seated, the stand point is under the feet (the rise goes over them); lying on a bed, the
+    // object's free floor point nearest to the pelvis.
+    const auto& b = s.env->bodies(i);
+    const Eigen::Vector2d feet =
+        0.5 * (b.pos[humanoid::kLeftFoot] + b.pos[humanoid::kRightFoot]).head<2>();
+    if (getup->start(i) == GetUpSkill::kSeatStart) {
+      EXPECT_NEAR((getup->stand_point(i) - feet).norm(), 0.0, 1e-9) << i;
+    } else {
+      ASSERT_FALSE(g.stand_points.empty());
+      double nearest = 1e9;
+      for (const auto& p : g.stand_points)
+        nearest = std::min(nearest, (p.head<2>() - pelvis.head<2>()).norm());
+      EXPECT_NEAR((getup->stand_point(i) - pelvis.head<2>()).norm(), nearest, 1e-9) << i;
+    }
     ++on_furniture;
   }
   EXPECT_GE(on_furniture, 4);
@@ -208,7 +220,8 @@ TEST(GetUpSkillTest, BackplayStartsRisenAndReachesBackWithSuccess) {
   EXPECT_GT(lowest, c.getup.standing_pelvis_height - 0.1);
   // A completed episode raises the level by a step, a failed one lowers it by half a step.
   auto complete = [&]() {
-    const Eigen::Vector2d stand = getup->stand_point(0);
+    // Standing upright on free floor (the object's stand point).
+    const Eigen::Vector3d stand = getup->geometry(0).stand_points.front();
     s.env->SetState(0, PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.89)));
     for (int k = 0; k < c.success_hold_steps; ++k) getup->Step(ViewOf(*s.env, 0));
     ASSERT_GE(getup->hold(0), c.success_hold_steps);

@@ -314,7 +314,17 @@ void GetUpSkill::StartGetUp(int i, const humanoid::BodyStates& b) {
   const Eigen::Vector2d pelvis = b.pos[humanoid::kPelvis].head<2>();
   getup_[i].stand = pelvis;
   const ObjectGeometry& g = geometry(i);
-  if (!floor_start(i) && !g.stand_points.empty()) {
+  const Eigen::Vector3d& l = b.pos[humanoid::kLeftFoot];
+  const Eigen::Vector3d& r = b.pos[humanoid::kRightFoot];
+  // Seated with the feet on the floor, the way up is over the feet (the clips rise there): a
+  // stand point at the object's stand point, ~0.45 m ahead of the seat, paid the feet for
+  // sliding forward first, and the recorded seat trials tipped back with the feet ahead.
+  // (A seat clip's feet may hang kMaxClipHeightMismatch above the floor until they settle.)
+  const bool feet_down =
+      std::max(l.z(), r.z()) < foot_height_ + kFloorContactHeight + kMaxClipHeightMismatch;
+  if (!floor_start(i) && feet_down) {
+    getup_[i].stand = 0.5 * (l + r).head<2>();
+  } else if (!floor_start(i) && !g.stand_points.empty()) {
     double best = std::numeric_limits<double>::infinity();
     for (const auto& s : g.stand_points)
       if ((s.head<2>() - pelvis).squaredNorm() < best)

@@ -15,10 +15,11 @@
 //
 // Goal and reward (in [0, 1]):
 //   feet phase: the contact goal is both feet on the floor disk of kStandDiskRadius around the
-//     stand point s (the object's free floor point nearest to the pelvis; the start point on
-//     the floor); r = w·contact reward (contact_reward.h, w = kFeetPhaseWeight) with anchor s
-//     and g_j the nearest disk points of the feet. The phase ends when both feet are within
-//     contact_success_threshold of the disk.
+//     stand point s (on furniture: the feet's midpoint when both feet rest on the floor, as a
+//     seated character's do, so the rise happens over the feet; else the object's free floor
+//     point nearest to the pelvis; on the floor: the start point); r = w·contact reward
+//     (contact_reward.h, w = kFeetPhaseWeight) with anchor s and g_j the nearest disk points of the
+//     feet. The phase ends when both feet are within contact_success_threshold of the disk.
 //   rise phase: r = w + (1 − w)·RiseReward, RiseReward = U·H·(0.6 + 0.4·B) + 0.15·S,
 //     H = 0.4·exp(−20·dp²) + 0.3·exp(−8·dh²) + 0.15·exp(−2·dh²), dp = max(h*_p − z_pelvis, 0),
 //     dh = max(h*_h − z_head, 0), U = 0.6 + 0.2·max(up_pelvis, 0) + 0.2·max(up_torso, 0),
