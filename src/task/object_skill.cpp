@@ -383,7 +383,7 @@ void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* in
   if (config_.object.spawn_curriculum && env_[env_id].started && !env_[env_id].reference) {
     const double step = config_.object.spawn_curriculum_step;
     const bool done = env_[env_id].hold >= config_.success_hold_steps;
-    env_[env_id].level = std::clamp(env_[env_id].level + (done ? step : -0.5 * step), 0.0, 1.0);
+    env_[env_id].level = NextCurriculumLevel(env_[env_id].level, done, step);
   }
   const int n = static_cast<int>(objects_.size());
   env_[env_id].object =
@@ -396,6 +396,10 @@ void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* in
   if (!(try_reference && ReferenceInit(env_id, rng, init))) DefaultInit(env_id, rng, init);
   env_[env_id].started = true;
   env_[env_id].reference = init->reference;
+}
+
+double NextCurriculumLevel(double level, bool done, double step) {
+  return std::clamp(level + (done ? step : -0.5 * step), 0.0, 1.0);
 }
 
 double FurnitureShare(const motion::MotionClip& clip, double pelvis_z) {

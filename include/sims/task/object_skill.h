@@ -100,6 +100,10 @@ struct ClipPlacement {
   Eigen::Vector3d Apply(const Eigen::Vector3d& p) const;
 };
 
+/// A per-env curriculum level after an episode: + `step` when it succeeded (`done`), − half a
+/// step when it did not, within [0, 1], so the level settles where a third of episodes succeed.
+double NextCurriculumLevel(double level, bool done, double step);
+
 /// Highest pelvis origin above a seat or mattress top while seated or lying on it (m).
 inline constexpr double kPelvisOnFurniture = 0.15;
 

@@ -245,11 +245,10 @@ double GetUpSkill::ReferenceTime(int i, double duration, double max_fraction, Rn
 void GetUpSkill::SampleInitialState(int i, Rng& rng, sim::InitialState* init) {
   // Learns from the episode that just ended, as the spawn curriculum does (fall-state starts
   // have no clip time and leave the level alone).
-  const double step = config_.getup.backplay_step;
-  if (config_.getup.backplay_end > 0 && env_[i].started && env_[i].reference) {
-    const bool done = env_[i].hold >= config_.success_hold_steps;
-    getup_[i].backplay = std::clamp(getup_[i].backplay + (done ? step : -0.5 * step), 0.0, 1.0);
-  }
+  if (config_.getup.backplay_end > 0 && env_[i].started && env_[i].reference)
+    getup_[i].backplay =
+        NextCurriculumLevel(getup_[i].backplay, env_[i].hold >= config_.success_hold_steps,
+                            config_.getup.backplay_step);
   ObjectSkill::SampleInitialState(i, rng, init);
 }
 
