@@ -42,9 +42,14 @@ step() { echo "[figures $(( $(date +%s) - start )) s] $*" >&2; }
 skills=$(python3 -c "import json,sys; print(' '.join(json.load(open(sys.argv[1]))['policies']))" "$POLICIES")
 for skill in $skills; do
   ckpt="assets/policies/$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['policies'][sys.argv[2]])" "$POLICIES" "$skill")"
-  step "eval_policy $skill ($TRIALS trials, seed $EVAL_SEED)"
+  # A policy keeps the start protocol of its bundled evaluation (get-up: half its trials from
+  # seated/lying clip states, --reference-starts 0.5), so --write replaces it like for like.
+  bundled="$(dirname "$ckpt")/eval.json"
+  starts=0
+  [ -f "$bundled" ] && starts=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1])).get('reference_starts', 0))" "$bundled")
+  step "eval_policy $skill ($TRIALS trials, seed $EVAL_SEED, reference starts $starts)"
   "$BIN/eval_policy" --checkpoint "$ckpt" --trials "$TRIALS" --seed "$EVAL_SEED" \
-    --out "$OUT/eval_$skill.json" --log-level warn > /dev/null
+    --reference-starts "$starts" --out "$OUT/eval_$skill.json" --log-level warn > /dev/null
 done
 
 # 2. The main command's story over seeds 0..SEEDS-1.
@@ -81,14 +86,16 @@ out, skills, trials, seeds, eval_seed, story, stories = sys.argv[1:8]
 fig = {"policies": {}, "story": {}, "retrieval": {}, "stories": {}}
 e = json.load(open(os.path.join(out, "eval_story.json")))
 fig["stories"] = {"command": f"eval_story --stories {stories} --seed 0",
-                  "per_difficulty": e["per_difficulty"]}
+                  "per_difficulty": e["per_difficulty"], "per_skill": e.get("per_skill", {})}
 for skill in skills.split():
     e = json.load(open(os.path.join(out, f"eval_{skill}.json")))
     fig["policies"][skill] = {k: e[k] for k in (
         "skill", "scene", "trials", "seed", "success_rate", "fall_rate", "contact_error",
-        "time_to_success_s", "checkpoint", "checkpoint_sha256") if k in e}
+        "time_to_success_s", "checkpoint", "checkpoint_sha256", "reference_starts") if k in e}
+    starts = e.get("reference_starts", 0)
     fig["policies"][skill]["command"] = (
-        f"eval_policy --checkpoint {e['checkpoint']} --trials {trials} --seed {eval_seed}")
+        f"eval_policy --checkpoint {e['checkpoint']} --trials {trials} --seed {eval_seed}"
+        + (f" --reference-starts {starts}" if starts else ""))
 done, total, per_seed = 0, 0, []
 for s in range(int(seeds)):
     r = json.load(open(os.path.join(out, f"story_seed{s}", "result.json")))
@@ -122,7 +129,9 @@ lines = ["<!-- figures:begin (tools/figures.sh --write; do not edit by hand) -->
          "| skill | evaluation (`eval_policy`, trials, seed) | success | falls | mean contact error | checkpoint sha256 |",
          "|---|---|---|---|---|---|"]
 for skill, p in sorted(fig["policies"].items()):
-    lines.append(f"| {skill} | {p['scene']}, {p['trials']} trials, seed {p['seed']} | "
+    starts = p.get("reference_starts", 0)
+    starts = f", {100 * starts:.0f} % clip starts" if starts else ""
+    lines.append(f"| {skill} | {p['scene']}, {p['trials']} trials, seed {p['seed']}{starts} | "
                  f"{100 * p['success_rate']:.0f} % | {100 * p['fall_rate']:.0f} % | "
                  f"{p['contact_error']:.2f} m | `{p['checkpoint_sha256'][:12]}` |")
 s = fig["story"]
@@ -143,6 +152,11 @@ for d in ("simple", "mid", "hard"):
     lines.append(f"| {d} | {x['stories']} | {100 * x['success_rate']:.1f} % | {paper[d]} % | "
                  f"{x['contact_error']:.2f} m | {x['foot_sliding_m_per_s']:.2f} m/s | "
                  f"{x.get('fid', float('nan')):.2f} | {x['apd']:.2f} |")
+per_skill = fig["stories"].get("per_skill", {})
+if per_skill:
+    lines += ["", "Keyframes per skill over those stories: " + ", ".join(
+        f"{k} {x['succeeded']}/{x['keyframes']} ({x['falls']} falls)"
+        for k, x in sorted(per_skill.items())) + "."]
 lines += ["", "<!-- figures:end -->"]
 text = open(sys.argv[2]).read()
 begin, end = text.find("<!-- figures:begin"), text.find("<!-- figures:end -->")

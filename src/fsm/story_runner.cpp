@@ -41,16 +41,20 @@ namespace {
 // The env's task hook during a story: forwards to the skill of the current instruction. The
 // skills' own episode logic (success-held truncation, force termination, new walk targets)
 // is ignored: the FSM decides when an instruction ends, and the character is never reset.
+// Skills observe in their own layouts (an object skill adds its object to walk's), so the row
+// is as wide as the widest skill: the current skill fills its prefix, the rest stays zero, and
+// each policy reads the prefix of its own width.
 class StoryTask : public sim::TaskHook {
  public:
-  explicit StoryTask(std::shared_ptr<task::Skill> layout) : layout_(std::move(layout)) {}
+  StoryTask(std::shared_ptr<task::Skill> layout, int obs_dim)
+      : layout_(std::move(layout)), obs_dim_(obs_dim) {}
   void set_current(task::Skill* s) { current_ = s; }
   task::Skill* current() const { return current_; }
   void set_start(const humanoid::HumanoidPose& p) { start_ = p; }
   const sim::TaskStepResult& last() const { return last_; }
 
-  int obs_dim() const override { return layout_->obs_dim(); }
-  std::vector<sim::ObsSegment> obs_segments() const override { return layout_->obs_segments(); }
+  int obs_dim() const override { return obs_dim_; }
+  std::vector<sim::ObsSegment> obs_segments() const override { return observer()->obs_segments(); }
   void SampleInitialState(int, Rng&, sim::InitialState* init) override { init->pose = start_; }
   void OnReset(const sim::EnvView&, Rng&) override {}
   sim::TaskStepResult Step(const sim::EnvView& view) override {
@@ -61,11 +65,16 @@ class StoryTask : public sim::TaskHook {
     return r;
   }
   void Observe(const sim::EnvView& view, float* out) const override {
-    (current_ ? current_ : layout_.get())->Observe(view, out);
+    const task::Skill* s = observer();
+    s->Observe(view, out);
+    std::fill(out + s->obs_dim(), out + obs_dim_, 0.0f);
   }
 
  private:
+  const task::Skill* observer() const { return current_ ? current_ : layout_.get(); }
+
   std::shared_ptr<task::Skill> layout_;
+  int obs_dim_ = 0;
   task::Skill* current_ = nullptr;
   humanoid::HumanoidPose start_;
   sim::TaskStepResult last_;
@@ -504,7 +513,8 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
       std::make_unique<scene::FreeSpaceGrid>(*m.scene, *m.context.height_grid, options.navigation);
   sim::EnvConfig env_config;
   std::shared_ptr<task::Skill> layout;
-  int obs_dim = -1;
+  std::string layout_file;
+  int obs_dim = 0;
   // Each skill sees the heightmap of the kind of scene it was trained in: skills trained on an
   // empty floor (walk: obstacles are the navigation's job) get the flat floor's heightmap;
   // object skills trained among furniture get the story scene's.
@@ -515,16 +525,24 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
     try {
       const task::SkillInfo& info = task::FindSkill(skill);
       auto s = info.create(p.skill_config, info.traits.flat_scene ? flat : m.context);
-      if (obs_dim < 0) {
-        obs_dim = humanoid::kSelfObsDim + s->obs_dim();
+      const int width = humanoid::kSelfObsDim + s->obs_dim();
+      if (p.policy->obs_dim() != width)
+        ThrowInputError(
+            file.string(), "obs_dim",
+            "the width of the '" + skill + "' skill's observation (" + std::to_string(width) + ")",
+            std::to_string(p.policy->obs_dim()));
+      if (!layout) {
         env_config = p.env_config;
         layout = s;
+        layout_file = file.string();
       }
-      if (humanoid::kSelfObsDim + s->obs_dim() != obs_dim || p.policy->obs_dim() != obs_dim)
-        ThrowInputError(file.string(), "obs_dim",
-                        "the observation width shared by the story's policies (" +
-                            std::to_string(obs_dim) + ")",
-                        std::to_string(p.policy->obs_dim()));
+      // One env computes every policy's self observation and steps at one control rate.
+      const auto& e = p.env_config;
+      if (e.substeps != env_config.substeps || e.root_height_obs != env_config.root_height_obs ||
+          e.local_root_obs != env_config.local_root_obs)
+        ThrowInputError(file.string(), "metadata env (substeps, root_height_obs, local_root_obs)",
+                        "the settings of " + layout_file, "different ones");
+      obs_dim = std::max(obs_dim, width);
       m.skills[skill] = s;
       m.policies[skill] = std::move(p);
     } catch (const Error& e) {
@@ -541,7 +559,7 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   env_config.spawn_radius = 0;
   env_config.threads = 1;
   env_config.seed = options.seed;
-  m.task = std::make_shared<StoryTask>(layout);
+  m.task = std::make_shared<StoryTask>(layout, obs_dim - humanoid::kSelfObsDim);
   m.env = std::make_unique<sim::BatchedEnv>(m.context.humanoid, env_config, m.task);
   m.action.assign(humanoid::kNumDofs, 0.0f);
 }
@@ -671,7 +689,7 @@ std::vector<StoryResult> RunStoriesBatched(const std::vector<StoryJob>& jobs, in
         obs_rows.resize(static_cast<size_t>(k) * obs_dim);
         act_rows.resize(static_cast<size_t>(k) * act_dim);
         for (int r = 0; r < k; ++r) {
-          SIMS_CHECK(m[rows[r]]->env->obs_dim() == obs_dim);
+          SIMS_CHECK(m[rows[r]]->env->obs_dim() >= obs_dim);
           std::memcpy(obs_rows.data() + static_cast<size_t>(r) * obs_dim,
                       m[rows[r]]->PolicyObservation(), sizeof(float) * obs_dim);
         }

@@ -104,6 +104,11 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
 
   nlohmann::json rows = nlohmann::json::array(), per = nlohmann::json::object();
   std::vector<Eigen::MatrixXd> all_features;
+  // Which skill the failures come from: keyframes and successes per skill, all difficulties.
+  struct SkillTally {
+    int keyframes = 0, succeeded = 0, falls = 0;
+  };
+  std::map<std::string, SkillTally> per_skill;
   ProgressReporter progress("eval_story", static_cast<int64_t>(entries.size()), "stories", 5.0);
   int64_t done = 0;
   size_t next = 0;
@@ -137,6 +142,10 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
           row["penetration_max_depth"] = p.max_depth;
           row["foot_sliding_m_per_s"] = s.mean_speed;
           row["style_z"] = !run.story.styles.empty();  // captions were turned into z
+          for (const auto& k : result.keyframes) {
+            SkillTally& t = per_skill[k.skill];
+            ++t.keyframes, t.succeeded += k.success, t.falls += k.falls;
+          }
           sr += result.success_rate, ce += result.mean_contact_error, ss += result.success_steps;
           pen += p.fraction_inside, depth = std::max(depth, p.max_depth), slide += s.mean_speed;
           ++n;
@@ -165,8 +174,15 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
     }
     per[difficulty] = d;
   }
+  nlohmann::json skills = nlohmann::json::object();
+  for (const auto& [skill, t] : per_skill)
+    skills[skill] = {{"keyframes", t.keyframes},
+                     {"succeeded", t.succeeded},
+                     {"success_rate", static_cast<double>(t.succeeded) / t.keyframes},
+                     {"falls", t.falls}};
   nlohmann::json out = {
       {"per_difficulty", per},
+      {"per_skill", skills},
       {"stories", rows},
       {"policies", policies.source.string()},
       {"ablation", ConfigToJson(o.story.ablation)},
@@ -275,6 +291,12 @@ std::string StoryEvalHtml(const nlohmann::json& report) {
         num(d, "penetration_fraction", 2, 100.0), num(d, "penetration_max_depth", 3),
         num(d, "foot_sliding_m_per_s", 3), num(d, "fid", 2), num(d, "apd", 2));
   }
+  std::string skill_rows;
+  const nlohmann::json per_skill = report.value("per_skill", nlohmann::json::object());
+  for (const auto& [skill, t] : per_skill.items())
+    skill_rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                              skill, t.value("keyframes", 0), t.value("succeeded", 0),
+                              num(t, "success_rate", 1, 100.0), t.value("falls", 0));
   const nlohmann::json ablation = report.value("ablation", nlohmann::json::object());
   return fmt::format(
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>eval_story</title>\n"
@@ -287,8 +309,11 @@ std::string StoryEvalHtml(const nlohmann::json& report) {
       "<th>success steps</th><th>contact error (m)</th><th>penetration</th>"
       "<th>max depth (m)</th><th>foot sliding (m/s)</th><th>FID</th><th>APD</th></tr>\n{}"
       "</table>\n<p>Success rate: keyframes succeeded / keyframes. The paper's column is its "
-      "full method's success rate, for scale.</p>\n</body></html>\n",
-      report.value("policies", std::string("?")), ablation.dump(), rows);
+      "full method's success rate, for scale.</p>\n"
+      "<h2>Keyframes per skill (all difficulties)</h2>\n<table>\n"
+      "<tr><th>skill</th><th>keyframes</th><th>succeeded</th><th>success rate</th>"
+      "<th>falls</th></tr>\n{}</table>\n</body></html>\n",
+      report.value("policies", std::string("?")), ablation.dump(), rows, skill_rows);
 }
 
 }  // namespace sims::story

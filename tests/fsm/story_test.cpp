@@ -8,8 +8,10 @@
 #include "common/tiny_training.h"
 #include "sims/core/error.h"
 #include "sims/learning/train_run.h"
+#include "sims/learning/trainer.h"
 #include "sims/scene/builtin.h"
 #include "sims/scene/loaders.h"
+#include "sims/task/object_skill.h"
 
 namespace sims::fsm {
 namespace {
@@ -42,6 +44,22 @@ const std::filesystem::path& TinyPolicySetWithGetUp() {
     std::ofstream(dir / "policies_getup.json")
         << R"({"policies": {"walk": "walk/policy.pt", "getup": "getup/policy.pt"}})";
     return dir / "policies_getup.json";
+  }();
+  return set;
+}
+
+// The tiny walk policy plus a tiny sit policy, whose observation adds the object's (wider).
+const std::filesystem::path& TinyPolicySetWithSit() {
+  static const std::filesystem::path set = [] {
+    const auto dir = TinyPolicySet().parent_path();
+    learning::TrainConfig c = sims::testing::TinyTrainConfig("sit");
+    c.skill.reference_init_prob = 0;  // no clips needed
+    learning::TrainOptions o;
+    o.out_dir = dir / "sit";
+    learning::RunTraining(c, o);
+    std::ofstream(dir / "policies_sit.json")
+        << R"({"policies": {"walk": "walk/policy.pt", "sit": "sit/policy.pt"}})";
+    return dir / "policies_sit.json";
   }();
   return set;
 }
@@ -384,6 +402,87 @@ TEST(StoryBatchTest, AFailingStoryDoesNotStopTheOthers) {
   EXPECT_THROW(
       RunStoriesBatched({{&a, &good, {3, 0, 0}, 0, nullptr}, {&b, &bad, {3, 0, 0}, 0, nullptr}}),
       Error);
+}
+
+// Sit on object 0 (keyframe 1).
+Instruction SitOnObject0() {
+  Instruction in;
+  in.keyframe = 1;
+  in.skill = "sit";
+  in.caption = "sit";
+  in.target.object = 0;
+  return in;
+}
+
+// Walk's policy and the wider sit policy run in one story: each policy gets its own skill's
+// layout, the walk's row with nothing past its width, the sit's with the object it sits on.
+TEST(StoryMixedWidthTest, EachPolicySeesItsOwnSkillsObservation) {
+  const PolicySet policies = LoadPolicySet(TinyPolicySetWithSit());
+  const int walk_dim = learning::Policy(policies.File("walk")).obs_dim();
+  const int sit_dim = learning::Policy(policies.File("sit")).obs_dim();
+  ASSERT_EQ(sit_dim, walk_dim + task::kObjectObsDim);
+  StoryOptions o;
+  o.walk_timeout_s = 0.5;
+  o.skill_timeout_s = 0.5;
+  StoryRunner runner(std::make_shared<scene::Scene>(scene::BuiltinScene("chair")), policies, o);
+  std::map<std::string, int> calls;
+  runner.SetActionOverride([&](const std::string& skill, const float* obs, float* a) {
+    ++calls[skill];
+    if (skill == "walk") {
+      for (int j = walk_dim; j < sit_dim; ++j) ASSERT_EQ(obs[j], 0.0f) << "walk row, value " << j;
+    } else {
+      // The object slice: the target and the box corners relative to the pelvis.
+      const float* object = obs + humanoid::kSelfObsDim + task::kContactGoalDim;
+      double norm = 0;
+      for (int j = 0; j < task::kObjectObsDim; ++j) norm += std::abs(object[j]);
+      ASSERT_GT(norm, 1.0) << "the sit policy sees its object";
+    }
+    const double standing[humanoid::kNumDofs] = {0};
+    runner.humanoid()->TargetsToAction(standing, a);
+  });
+  const auto r = runner.Run({WalkTo({2, 0, 0}), SitOnObject0()}, {3, 0, 0}, 0.0, nullptr);
+  ASSERT_EQ(r.keyframes.size(), 2u);
+  EXPECT_GT(calls["walk"], 0);
+  EXPECT_GT(calls["sit"], 0);
+}
+
+// The same stories with the real (tiny) policies, batched (each policy's rows of its own
+// width in one call) and one at a time, to the bit.
+TEST(StoryMixedWidthTest, BatchedStoriesWithBothWidthsEqualStoriesRunAlone) {
+  const PolicySet policies = LoadPolicySet(TinyPolicySetWithSit());
+  const std::vector<Instruction> story = {WalkTo({2, 0, 0}), SitOnObject0()};
+  StoryOptions o;
+  o.walk_timeout_s = 0.5;
+  o.skill_timeout_s = 0.5;
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
+  auto make_runner = [&](uint64_t seed) {
+    StoryOptions so = o;
+    so.seed = seed;
+    return std::make_unique<StoryRunner>(scene, policies, so);
+  };
+  const std::vector<uint64_t> seeds = {0, 3, 4};
+  std::vector<StoryResult> alone;
+  std::vector<io::MotionRecord> alone_records;
+  for (uint64_t seed : seeds) {
+    auto r = make_runner(seed);
+    io::MotionRecordBuilder rec(r->humanoid());
+    alone.push_back(r->Run(story, {3, 0, 0}, 0.1 * seed, &rec));
+    alone_records.push_back(rec.Finish());
+  }
+  std::vector<std::unique_ptr<StoryRunner>> runners;
+  std::vector<std::unique_ptr<io::MotionRecordBuilder>> recorders;
+  std::vector<StoryJob> jobs;
+  for (uint64_t seed : seeds) {
+    runners.push_back(make_runner(seed));
+    recorders.push_back(std::make_unique<io::MotionRecordBuilder>(runners.back()->humanoid()));
+    jobs.push_back({runners.back().get(), &story, {3, 0, 0}, 0.1 * seed, recorders.back().get()});
+  }
+  const std::vector<StoryResult> batched = RunStoriesBatched(jobs, 2);
+  for (size_t i = 0; i < seeds.size(); ++i) {
+    SCOPED_TRACE("story " + std::to_string(i));
+    ASSERT_EQ(alone[i].keyframes.size(), 2u);
+    ExpectSameRun(alone[i], alone_records[i], batched[i], recorders[i]->Finish());
+  }
 }
 
 TEST(InstructionTest, ScenePlanStepsBecomeWalkAndUnifiedInstructions) {

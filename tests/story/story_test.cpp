@@ -140,10 +140,13 @@ TEST(StoryRunTest, WritesEveryOutputOrNothing) {
   EXPECT_EQ(ReadJsonFile(dir / "out" / "config.json")["instruction"], "walk to the chair");
 
   // A skill without a policy: by default its keyframe fails with a note and the story runs.
+  std::ofstream(dir / "walk_only.json")
+      << nlohmann::json{{"policies", {{"walk", AssetPath("policies/walk/policy.pt").string()}}}};
+  const auto walk_only = fsm::LoadPolicySet(dir / "walk_only.json");
   StoryInput sit = in;
-  sit.instruction = "sit on the chair";  // no sit policy in the set
+  sit.instruction = "sit on the chair";  // no sit policy in walk_only
   const PreparedStory sit_story = PrepareStory(sit);
-  const auto sat = StoryRunToJson(RunStory(sit_story, policies, ShortOptions()));
+  const auto sat = StoryRunToJson(RunStory(sit_story, walk_only, ShortOptions()));
   ASSERT_FALSE(sat["keyframes"].empty());
   EXPECT_EQ(sat["keyframes"].back()["skill"], "sit");
   EXPECT_FALSE(sat["keyframes"].back()["success"].get<bool>());
@@ -153,7 +156,7 @@ TEST(StoryRunTest, WritesEveryOutputOrNothing) {
   // Bad inputs: clear errors.
   fsm::StoryOptions strict = ShortOptions();
   strict.missing_policy_fails = false;
-  EXPECT_THROW(RunStory(sit_story, policies, strict), Error);
+  EXPECT_THROW(RunStory(sit_story, walk_only, strict), Error);
   std::ofstream(dir / "script.json")
       << R"({"keyframes": [{"skill": "sit", "furniture": "spaceship"}]})";
   StoryInput bad;
@@ -283,26 +286,45 @@ TEST(StoryBatchTest, BatchedStoriesEqualSequentialRuns) {
   ASSERT_EQ(sequential["stories"].size(), 4u);
   EXPECT_EQ(strip(in_threes), strip(sequential));
   for (const auto& row : sequential["stories"]) EXPECT_FALSE(row.contains("error")) << row;
+  // The per-skill tally counts every keyframe of every story once.
+  int keyframes = 0, tallied = 0;
+  double succeeded = 0;
+  for (const auto& row : sequential["stories"]) {
+    keyframes += row["keyframes"].get<int>();
+    succeeded += row["success_rate"].get<double>() * row["keyframes"].get<int>();
+  }
+  int tallied_success = 0;
+  for (const auto& [skill, t] : sequential["per_skill"].items()) {
+    tallied += t["keyframes"].get<int>();
+    tallied_success += t["succeeded"].get<int>();
+    EXPECT_DOUBLE_EQ(t["success_rate"].get<double>(),
+                     t["succeeded"].get<double>() / t["keyframes"].get<double>());
+  }
+  EXPECT_EQ(tallied, keyframes);
+  EXPECT_NEAR(tallied_success, succeeded, 1e-6);
+  EXPECT_TRUE(sequential["per_skill"].contains("walk"));
   EXPECT_TRUE(in_threes["timing"].contains("run_s"));
 }
 
 // The HTML table beside eval_story's JSON: one row per difficulty with its figures, the paper's
 // success rate beside ours, and a dash for a metric the report lacks.
 TEST(StoryEvalHtmlTest, OneRowPerDifficultyWithItsFigures) {
-  const nlohmann::json report = {{"policies", "p.json"},
-                                 {"ablation", {{"no_text", false}}},
-                                 {"per_difficulty",
-                                  {{"simple",
-                                    {{"stories", 30},
-                                     {"success_rate", 0.275},
-                                     {"success_steps", 0.8},
-                                     {"contact_error", 0.9367},
-                                     {"penetration_fraction", 0.009},
-                                     {"penetration_max_depth", 0.047},
-                                     {"foot_sliding_m_per_s", 0.4197},
-                                     {"fid", 3.335},
-                                     {"apd", 1.384}}},
-                                   {"hard", {{"stories", 2}, {"success_rate", 0.5}}}}}};
+  nlohmann::json report = {{"policies", "p.json"},
+                           {"ablation", {{"no_text", false}}},
+                           {"per_difficulty",
+                            {{"simple",
+                              {{"stories", 30},
+                               {"success_rate", 0.275},
+                               {"success_steps", 0.8},
+                               {"contact_error", 0.9367},
+                               {"penetration_fraction", 0.009},
+                               {"penetration_max_depth", 0.047},
+                               {"foot_sliding_m_per_s", 0.4197},
+                               {"fid", 3.335},
+                               {"apd", 1.384}}},
+                             {"hard", {{"stories", 2}, {"success_rate", 0.5}}}}}};
+  report["per_skill"]["sit"] = {
+      {"keyframes", 8}, {"succeeded", 2}, {"success_rate", 0.25}, {"falls", 1}};
   const std::string html = StoryEvalHtml(report);
   EXPECT_NE(html.find("<table>"), std::string::npos);
   EXPECT_NE(html.find("<tr><td>simple</td><td>30</td><td>27.5 %</td><td>74.3 %</td><td>0.80</td>"
@@ -314,6 +336,9 @@ TEST(StoryEvalHtmlTest, OneRowPerDifficultyWithItsFigures) {
             std::string::npos)
       << html;
   EXPECT_EQ(html.find("mid"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>sit</td><td>8</td><td>2</td><td>25.0 %</td><td>1</td></tr>"),
+            std::string::npos)
+      << html;
 }
 
 }  // namespace

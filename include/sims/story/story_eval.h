@@ -48,13 +48,14 @@ struct StoryEvalOptions {
 StoryInput EvalStoryInput(const StoryEvalOptions& options, const nlohmann::json& themes,
                           const std::string& difficulty, int index);
 
-/// Runs the protocol; returns per-difficulty and overall metrics plus per-story rows, and how
-/// the stories ran ("batched", "batch_size", "timing": seconds to prepare, run and measure).
+/// Runs the protocol; returns per-difficulty and overall metrics, keyframes per skill
+/// ("per_skill": keyframes, succeeded, success_rate, falls), per-story rows, and how the
+/// stories ran ("batched", "batch_size", "timing": seconds to prepare, run and measure).
 nlohmann::json EvaluateStories(const StoryEvalOptions& options);
 
 /// The report's per-difficulty metrics as a small self-contained HTML page (one table row per
-/// difficulty, SIMS Table 2's columns, the paper's success rates for comparison); eval_story
-/// writes it beside its --out JSON.
+/// difficulty, SIMS Table 2's columns, the paper's success rates for comparison; then one row
+/// per skill); eval_story writes it beside its --out JSON.
 std::string StoryEvalHtml(const nlohmann::json& report);
 
 /// Times the protocol's stories (options.difficulties × stories_per_difficulty, planned as
