@@ -84,6 +84,7 @@ struct LoadedPolicy {
   std::unique_ptr<learning::Policy> policy;
   task::SkillConfig skill_config;
   sim::EnvConfig env_config;
+  bool trained_among_furniture = false;  // a walk trained in furnished rooms (walk_rooms > 0)
 };
 
 LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& file) {
@@ -96,6 +97,7 @@ LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& f
   if (trained != skill)
     ThrowInputError(file.string(), "metadata.extra.skill.skill",
                     "a policy trained for '" + skill + "'", "'" + trained + "'");
+  p.trained_among_furniture = p.skill_config.walk.rooms > 0;
   // A story never resamples targets or loads clips: the FSM sets every goal.
   p.skill_config.walk.resample_target_on_success = false;
   p.skill_config.walk.rooms = 0;  // the story places the character, in its own scene
@@ -517,14 +519,15 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   int obs_dim = 0;
   // Each skill sees the heightmap of the kind of scene it was trained in: skills trained on an
   // empty floor (walk: obstacles are the navigation's job) get the flat floor's heightmap;
-  // object skills trained among furniture get the story scene's.
+  // object skills and a walk trained among furniture get the story scene's.
   task::SkillContext flat = m.context;
   flat.height_grid = std::make_shared<const scene::SceneHeightGrid>(scene::Scene{});
   for (const auto& [skill, file] : policies.policies) {
     LoadedPolicy p = LoadPolicy(skill, file);
     try {
       const task::SkillInfo& info = task::FindSkill(skill);
-      auto s = info.create(p.skill_config, info.traits.flat_scene ? flat : m.context);
+      const bool flat_floor = info.traits.flat_scene && !p.trained_among_furniture;
+      auto s = info.create(p.skill_config, flat_floor ? flat : m.context);
       const int width = humanoid::kSelfObsDim + s->obs_dim();
       if (p.policy->obs_dim() != width)
         ThrowInputError(

@@ -485,6 +485,42 @@ TEST(StoryMixedWidthTest, BatchedStoriesWithBothWidthsEqualStoriesRunAlone) {
   }
 }
 
+// The heightmap values a story's walk policy sees at its first step from `start` in the
+// built-in chair scene (walk's layout: contact goals, then the heightmap).
+std::vector<float> FirstWalkHeightmap(const std::filesystem::path& set,
+                                      const Eigen::Vector3d& start) {
+  StoryOptions o;
+  o.walk_timeout_s = 0.1;
+  StoryRunner runner(std::make_shared<scene::Scene>(scene::BuiltinScene("chair")),
+                     LoadPolicySet(set), o);
+  std::vector<float> heightmap;
+  runner.SetActionOverride([&](const std::string&, const float* obs, float* a) {
+    const float* h = obs + humanoid::kSelfObsDim + task::kContactGoalDim;
+    if (heightmap.empty()) heightmap.assign(h, h + 16 * 16);
+    std::fill(a, a + humanoid::kNumDofs, 0.0f);
+  });
+  runner.Run({WalkTo({3, 0, 0})}, start, 0.0, nullptr);
+  return heightmap;
+}
+
+// A walk trained in furnished rooms (walk_rooms > 0) sees the story scene's heightmap, as in
+// its training; the open-floor walk sees the flat floor's next to the same chair.
+TEST(StoryHeightmapTest, AWalkTrainedAmongFurnitureSeesTheScene) {
+  const auto dir = TinyPolicySet().parent_path();
+  learning::TrainConfig c = sims::testing::TinyTrainConfig("walk");
+  c.skill.walk.rooms = 1;
+  learning::TrainOptions t;
+  t.out_dir = dir / "walk_rooms";
+  learning::RunTraining(c, t);
+  std::ofstream(dir / "policies_rooms.json") << R"({"policies": {"walk": "walk_rooms/policy.pt"}})";
+  const Eigen::Vector3d beside_chair(0.6, 0, 0);  // the chair stands at the origin
+  const auto spread = [](const std::vector<float>& h) {
+    return *std::max_element(h.begin(), h.end()) - *std::min_element(h.begin(), h.end());
+  };
+  EXPECT_EQ(spread(FirstWalkHeightmap(TinyPolicySet(), beside_chair)), 0.0f);
+  EXPECT_GT(spread(FirstWalkHeightmap(dir / "policies_rooms.json", beside_chair)), 0.3f);
+}
+
 TEST(InstructionTest, ScenePlanStepsBecomeWalkAndUnifiedInstructions) {
   const auto json = sims::testing::TestData("scene/sceneplan.json");
   const auto scene = scene::LoadScenePlan(json, sims::testing::TestData("scene/partnet"), "0000");
