@@ -26,6 +26,17 @@ SkillConfig GetUpConfig() {
   return c;
 }
 
+// Every start a seat clip at 0.9 of its length (backplay level 0), standing before the seat.
+SkillConfig RisenSeatStartConfig() {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {"chair", "armchair", "sofa", "stool"};
+  c.object.num_objects = 6;
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
+  c.getup.backplay_end = 0.9;
+  return c;
+}
+
 // Fall states lie on the floor, record how far their bodies reach, and are the same set at
 // any thread count (state k draws from seed + k).
 TEST(GetUpSkillTest, FallStatesLieOnTheFloor) {
@@ -281,12 +292,7 @@ TEST(GetUpSkillTest, BackplayStartsRisenAndReachesBackWithSuccess) {
 // the floor nor leave them hanging (a full 5 cm shift did both, and the contact solver kicked
 // the sunken feet out).
 TEST(GetUpSkillTest, RisenReferenceStartsStandOnTheFloor) {
-  SkillConfig c = GetUpConfig();
-  c.object.object_categories = {"chair", "armchair", "sofa", "stool"};
-  c.object.num_objects = 6;
-  c.reference_init_prob = 1.0;
-  c.getup.floor_clip_share = 0.0;
-  c.getup.backplay_end = 0.9;  // level 0: every start at 0.9 of its clip, standing
+  const SkillConfig c = RisenSeatStartConfig();
   const int n = 12;
   auto s = MakeSkillEnv(c, n);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
@@ -495,12 +501,7 @@ TEST(GetUpSkillTest, SuccessIsStandingUprightOnTheFloorAlone) {
 // nothing touches the furniture and the stand is balanced, so a trained policy that fails
 // from there (training logs: reference success ~0.27 at level 0.06) fails by what it does.
 TEST(GetUpSkillTest, RisenSeatStartsSucceedByHoldingStill) {
-  SkillConfig c = GetUpConfig();
-  c.object.object_categories = {"chair", "armchair", "sofa", "stool"};
-  c.object.num_objects = 6;
-  c.reference_init_prob = 1.0;
-  c.getup.floor_clip_share = 0.0;
-  c.getup.backplay_end = 0.9;
+  const SkillConfig c = RisenSeatStartConfig();
   const int n = 12;
   auto s = MakeSkillEnv(c, n);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
