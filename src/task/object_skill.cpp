@@ -373,8 +373,7 @@ void ObjectSkill::DefaultInit(int env_id, Rng& rng, sim::InitialState* init) {
   init->pose.root_pos.x() = p.x();
   init->pose.root_pos.y() = p.y();
   init->pose.root_rot = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
-  const auto& clips = ReferenceClips();
-  SetStyle(env_id, clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))]);
+  SetStyle(env_id, DrawReferenceStyle(rng));
 }
 
 void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {

@@ -1,5 +1,6 @@
 #include "sims/task/skill.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -118,13 +119,33 @@ bool Skill::BeginInstruction(const sim::EnvView&, const InstructionTarget&) { re
 
 double Skill::goal_error(const sim::EnvView&) const { return 0.0; }
 
+int DrawStyleClip(const motion::MotionLibrary& lib, const std::vector<int>& clips,
+                  bool balance_emotions, Rng& rng) {
+  if (clips.empty()) return -1;
+  if (!balance_emotions) return clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+  std::vector<std::string> emotions;
+  for (int c : clips) emotions.push_back(lib.clip(c).meta().emotion);
+  std::sort(emotions.begin(), emotions.end());
+  emotions.erase(std::unique(emotions.begin(), emotions.end()), emotions.end());
+  const std::string& e = emotions[rng.UniformInt(static_cast<int64_t>(emotions.size()))];
+  std::vector<int> of_e;
+  for (int c : clips)
+    if (lib.clip(c).meta().emotion == e) of_e.push_back(c);
+  return of_e[rng.UniformInt(static_cast<int64_t>(of_e.size()))];
+}
+
+int Skill::DrawReferenceStyle(Rng& rng) const {
+  if (!context_.motions) return -1;
+  return DrawStyleClip(*context_.motions, ReferenceClips(), config_.balance_emotions, rng);
+}
+
 void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
   const auto& clips = ReferenceClips();
   const auto* lib = context_.motions.get();
   if (lib && !clips.empty() && rng.Bernoulli(config_.reference_init_prob)) {
     // Reference-state init: a clip of this skill at a random time, placed where the env's
     // default put the character (position and heading), with its AMP history.
-    const int clip = clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+    const int clip = DrawReferenceStyle(rng);
     const double t = lib->SampleTime(clip, rng, config_.reference_init_max_fraction);
     motion::ReferenceState ref = lib->StateAt(clip, t);
     const double yaw =
@@ -146,7 +167,7 @@ void Skill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
     state_[env_id].style = clip;
   } else if (lib && !clips.empty()) {
     // Default init still pursues some clip's style (SIMS conditions every episode on a z).
-    state_[env_id].style = clips[rng.UniformInt(static_cast<int64_t>(clips.size()))];
+    state_[env_id].style = DrawReferenceStyle(rng);
   } else {
     state_[env_id].style = -1;
   }

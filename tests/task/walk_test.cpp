@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -175,6 +176,37 @@ TEST(WalkStyleTest, SpeedFollowsTheStyleClip) {
   auto plain = testing::MakeSkillEnv(c, 2);
   EXPECT_DOUBLE_EQ(dynamic_cast<WalkSkill*>(plain.setup.skill.get())->target_speed(0),
                    c.target_speed);
+}
+
+// balance_emotions: episodes' styles come emotion by emotion (each emotion of the skill's
+// clips alike), where a uniform clip draw follows the clip counts (mostly neutral walks).
+TEST(WalkStyleTest, BalancedEmotionsGiveEachEmotionItsShareOfEpisodes) {
+  SkillConfig c;
+  c.motion.manifest = testing::SyntheticManifest({"walk"});
+  c.motion.skills = {"walk"};
+  c.style_conditioned = true;
+  auto emotion_shares = [&](bool balance) {
+    c.balance_emotions = balance;
+    constexpr int kEnvs = 8, kRounds = 150;
+    auto s = testing::MakeSkillEnv(c, kEnvs);
+    const auto& lib = *s.setup.context.motions;
+    std::map<std::string, double> share;
+    for (int round = 0; round < kRounds; ++round)
+      for (int i = 0; i < kEnvs; ++i) {
+        s.env->ResetEnv(i);
+        const int clip = s.setup.skill->style_id(i);
+        EXPECT_EQ(lib.clip(clip).meta().skill, "walk");
+        share[lib.clip(clip).meta().emotion] += 1.0 / (kEnvs * kRounds);
+      }
+    return share;
+  };
+  const auto uniform = emotion_shares(false);
+  const auto balanced = emotion_shares(true);
+  ASSERT_GE(balanced.size(), 6u);
+  EXPECT_EQ(balanced.size(), uniform.size());
+  EXPECT_GT(uniform.at("neutral"), 0.4) << "most synthetic walk clips are neutral";
+  for (const auto& [emotion, share] : balanced)
+    EXPECT_NEAR(share, 1.0 / balanced.size(), 0.04) << emotion;
 }
 
 // With style_pose_weight the task reward mixes in exp(−scale·mean_j (q̃_j − q̄_j)²), q̄ the

@@ -63,6 +63,11 @@ struct SkillConfig {
   scene::HeightmapConfig heightmap;  ///< Egocentric heightmap layout (16×16, 0.1 m).
   bool style_conditioned = false;    ///< Put the clip's z in the observation.
   std::string style_model;  ///< Motion–text model dir: text-aligned z per clip ("" = name codes).
+  /// Draw an episode's style emotion first (uniform over the emotions of the skill's clips),
+  /// then a clip of it, instead of a clip uniformly: the synthetic walk clips are 32 neutral
+  /// and 2 of each other emotion (plus mirrors), so a uniform draw gives each emotion 4 % of
+  /// the episodes (DrawStyleClip).
+  bool balance_emotions = false;
   double reference_init_prob = 0.5;          ///< Hybrid init: P(reference state).
   double reference_init_max_fraction = 1.0;  ///< Reference times in [0, f·duration].
   double target_speed = 1.0;                 ///< v* towards the goal (m/s).
@@ -84,6 +89,7 @@ struct SkillConfig {
     a->Visit(SIMS_NVP(heightmap));
     a->Visit(SIMS_NVP(style_conditioned));
     a->Visit(SIMS_NVP(style_model));
+    a->Visit(SIMS_NVP(balance_emotions));
     a->Visit(SIMS_NVP(reference_init_prob));
     a->Visit(SIMS_NVP(reference_init_max_fraction));
     a->Visit(SIMS_NVP(target_speed));
@@ -98,6 +104,12 @@ struct SkillConfig {
   /// registered skill declares, with a valid value.
   void Validate() const;
 };
+
+/// One of `clips` for an episode's style: uniform over the clips, or with `balance_emotions`
+/// an emotion uniform over those of `clips` (clip metadata) and then a clip of it. Both draw
+/// from `rng` only (the unbalanced draw exactly as clips[rng.UniformInt(size)]); −1 when empty.
+int DrawStyleClip(const motion::MotionLibrary& lib, const std::vector<int>& clips,
+                  bool balance_emotions, Rng& rng);
 
 /// Everything a skill instance shares with the environment.
 struct SkillContext {
@@ -201,6 +213,8 @@ class Skill : public sim::TaskHook {
   virtual void SerializeSkillState(int env_id, StateArchive* archive);
   /// Clips eligible for reference init of this skill (default: all library clips).
   virtual const std::vector<int>& ReferenceClips() const { return reference_clips_; }
+  /// DrawStyleClip over ReferenceClips() with this config's balance (−1 without a library).
+  int DrawReferenceStyle(Rng& rng) const;
 
   SkillConfig config_;
   SkillContext context_;

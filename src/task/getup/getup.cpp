@@ -273,8 +273,7 @@ void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
   init->history.clear();
   init->reference = false;
   init->termination_grace_steps = config_.getup.fall_grace_steps;
-  const auto& clips = ReferenceClips();
-  SetStyle(i, clips.empty() ? -1 : clips[rng.UniformInt(static_cast<int64_t>(clips.size()))]);
+  SetStyle(i, DrawReferenceStyle(rng));
 }
 
 void GetUpSkill::SetGetUpGoals(int i, const humanoid::BodyStates& b, double* feet_sq,
