@@ -33,6 +33,7 @@ void StoryOptions::Validate() const {
   Require(max_retries >= 0, "max_retries", "a non-negative count");
   Require(lookahead > 0, "lookahead", "a positive distance (m)");
   Require(walk_success_hold_steps >= 1, "walk_success_hold_steps", "at least 1 step");
+  Require(walk_success_radius > 0, "walk_success_radius", "a positive distance (m)");
   Require(threads >= 0, "threads", "0 (all) or a positive count");
 }
 
@@ -524,6 +525,7 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   flat.height_grid = std::make_shared<const scene::SceneHeightGrid>(scene::Scene{});
   for (const auto& [skill, file] : policies.policies) {
     LoadedPolicy p = LoadPolicy(skill, file);
+    p.skill_config.walk.success_radius = options.walk_success_radius;
     try {
       const task::SkillInfo& info = task::FindSkill(skill);
       const bool flat_floor = info.traits.flat_scene && !p.trained_among_furniture;

@@ -112,6 +112,29 @@ TEST_F(StoryRunnerTest, SwitchesAfterSuccessHeldForTheHoldTime) {
   EXPECT_EQ(rec.num_frames(), 21);
 }
 
+// A walk succeeds within the story's walk_success_radius of its goal, whatever radius the
+// walk policy trained with: a character standing 1 m from its goal arrives with a 1.2 m
+// radius and times out with the default 0.5 m.
+TEST(StoryWalkRadiusTest, TheStoryDecidesWhenAWalkHasArrived) {
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("empty"));
+  auto run = [&](double radius) {
+    StoryOptions o;
+    o.walk_timeout_s = 1.0;
+    o.walk_success_radius = radius;
+    StoryRunner runner(scene, LoadPolicySet(TinyPolicySet()), o);
+    runner.SetActionOverride([&](const std::string&, const float*, float* a) {
+      const double standing[humanoid::kNumDofs] = {0};
+      runner.humanoid()->TargetsToAction(standing, a);
+    });
+    return runner.Run({WalkTo({3, 1, 0})}, {3, 0, 0}, 0.0, nullptr).keyframes.at(0);
+  };
+  const KeyframeOutcome wide = run(1.2), strict = run(0.5);
+  EXPECT_TRUE(wide.success) << wide.note;
+  EXPECT_NEAR(wide.contact_error, 1.0, 0.05);
+  EXPECT_FALSE(strict.success);
+  EXPECT_NE(strict.note.find("time-out"), std::string::npos) << strict.note;
+}
+
 TEST_F(StoryRunnerTest, TimeOutRecordsAFailureAndTheStoryGoesOn) {
   const Eigen::Vector3d start(3, 0, 0);
   const auto r = runner_->Run({WalkTo({3, 4, 0}), WalkTo({3, 4.2, 0})}, start, 0.0, nullptr);

@@ -24,16 +24,20 @@ namespace sims::fsm {
 
 /// FSM settings.
 struct StoryOptions {
-  int success_hold_steps = 20;         ///< Success must hold this long before switching (steps).
-  double walk_timeout_s = 25.0;        ///< Time-out of a walk instruction, plus ...
-  double walk_seconds_per_m = 2.0;     ///< ... this per metre of planned path beyond 5 m.
-  double skill_timeout_s = 10.0;       ///< Time-out of the other skills (SIMS: 10 s per step).
-  int max_retries = 1;                 ///< Retries of an instruction after a fall.
-  bool reset_after_fall = true;        ///< No get-up: put the character back on its feet.
-  double fallen_head_height = 0.4;     ///< Head below this ...
-  double fallen_pelvis_height = 0.4;   ///< ... and pelvis below this = fallen (m).
-  double lookahead = 1.0;              ///< Walks chase a path point this far ahead (m).
-  int walk_success_hold_steps = 5;     ///< A walk only needs to arrive, not to stay (steps).
+  int success_hold_steps = 20;        ///< Success must hold this long before switching (steps).
+  double walk_timeout_s = 25.0;       ///< Time-out of a walk instruction, plus ...
+  double walk_seconds_per_m = 2.0;    ///< ... this per metre of planned path beyond 5 m.
+  double skill_timeout_s = 10.0;      ///< Time-out of the other skills (SIMS: 10 s per step).
+  int max_retries = 1;                ///< Retries of an instruction after a fall.
+  bool reset_after_fall = true;       ///< No get-up: put the character back on its feet.
+  double fallen_head_height = 0.4;    ///< Head below this ...
+  double fallen_pelvis_height = 0.4;  ///< ... and pelvis below this = fallen (m).
+  double lookahead = 1.0;             ///< Walks chase a path point this far ahead (m).
+  int walk_success_hold_steps = 5;    ///< A walk only needs to arrive, not to stay (steps).
+  /// A walk arrives within this distance of its goal (m), whatever radius its policy was
+  /// trained with (the open-floor walk 0.5 m, the furnished-room walk 0.3 m): the next skill
+  /// takes over from there, and stories stay comparable across walk policies.
+  double walk_success_radius = 0.5;
   scene::NavigationConfig navigation;  ///< Free-space grid and waypoints.
   bool missing_policy_fails = true;    ///< Keyframes of skills without a policy fail (else: error).
   uint64_t seed = 0;                   ///< Env seed and start placement (0: canonical start).
@@ -53,6 +57,7 @@ struct StoryOptions {
     a->Visit(SIMS_NVP(fallen_pelvis_height));
     a->Visit(SIMS_NVP(lookahead));
     a->Visit(SIMS_NVP(walk_success_hold_steps));
+    a->Visit(SIMS_NVP(walk_success_radius));
     a->Visit(SIMS_NVP(navigation));
     a->Visit(SIMS_NVP(missing_policy_fails));
     a->Visit(SIMS_NVP(seed));
