@@ -407,8 +407,17 @@ struct StoryRunner::Impl {
   bool StartAttempt() {
     std::string why;
     if (BeginAttempt((*run.instructions)[run.k], &run.current, &why)) {
-      run.phase = Phase::kAttempt;
-      return true;
+      // A script's get-up right after a walk, or after a sit that never sat, finds the
+      // character standing: its goal holds before the policy acts.
+      if (!run.current.skill->Accomplished(View())) {
+        run.phase = Phase::kAttempt;
+        return true;
+      }
+      run.out.success = true;
+      run.out.contact_error = GoalError(run.current.in->skill, run.current.target);
+      run.out.note = "accomplished at its start";
+      CloseKeyframe();
+      return false;
     }
     run.out.contact_error = 0;
     run.out.note = why;

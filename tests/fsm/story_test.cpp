@@ -264,24 +264,34 @@ TEST(StoryRecoveryTest, ASuccessfulGetUpRetriesTheKeyframeUntilRetriesRunOut) {
 }
 
 // A script's get-up from the floor (no object) while the character stands succeeds at once:
-// standing clear is the get-up's success (scripted standing pose).
+// standing clear is the get-up's success, so the get-up policy never acts (scripted here to
+// collapse, which it would do had it run) and the walk after it starts at time 0.
 TEST(StoryRecoveryTest, AGetUpFromTheFloorWhileStandingSucceedsAtOnce) {
   auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("chair"));
   StoryOptions o;
   o.skill_timeout_s = 3.0;
+  o.walk_timeout_s = 0.5;
   StoryRunner runner(scene, LoadPolicySet(TinyPolicySetWithGetUp()), o);
-  runner.SetActionOverride([&](const std::string&, const float*, float* a) {
+  std::vector<std::string> skills_seen;
+  runner.SetActionOverride([&](const std::string& skill, const float*, float* a) {
+    if (skills_seen.empty() || skills_seen.back() != skill) skills_seen.push_back(skill);
     const double standing[humanoid::kNumDofs] = {0};
-    runner.humanoid()->TargetsToAction(standing, a);
+    if (skill == "getup")
+      std::fill(a, a + humanoid::kNumDofs, -1.0f);
+    else
+      runner.humanoid()->TargetsToAction(standing, a);
   });
   Instruction up;
   up.skill = "getup";
   up.caption = "gets up from the floor after falling";
-  const auto r = runner.Run({up}, {3, 0, 0}, 0.0, nullptr);
-  ASSERT_EQ(r.keyframes.size(), 1u);
+  const auto r = runner.Run({up, WalkTo({3, 2, 0})}, {3, 0, 0}, 0.0, nullptr);
+  ASSERT_EQ(r.keyframes.size(), 2u);
   EXPECT_TRUE(r.keyframes[0].success) << r.keyframes[0].note;
+  EXPECT_EQ(r.keyframes[0].note, "accomplished at its start");
   EXPECT_EQ(r.keyframes[0].falls, 0);
-  EXPECT_LT(r.keyframes[0].end_time, 1.5) << "well before the 3 s time-out";
+  EXPECT_EQ(r.keyframes[0].end_time, 0.0);
+  EXPECT_EQ(r.keyframes[1].start_time, 0.0);
+  EXPECT_EQ(skills_seen, std::vector<std::string>{"walk"});
 }
 
 TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {

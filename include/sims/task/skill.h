@@ -194,6 +194,9 @@ class Skill : public sim::TaskHook {
   /// The distance (m) env view.env_id's success test compares with its threshold, for
   /// evaluation and story metrics; 0 for a skill without one.
   virtual double goal_error(const sim::EnvView& view) const;
+  /// True when the skill's goal already holds before it acts (get-up: standing clear), so a
+  /// story instruction of it ends at once as a success; default false.
+  virtual bool Accomplished(const sim::EnvView& /*view*/) const { return false; }
   /// How env `env_id`'s current episode started, for evaluation broken down by start kind
   /// (get-up: "seat", "bed", "floor", "fall"; reach: the target's height band); "" when the
   /// skill has no such kinds.

@@ -98,6 +98,8 @@ class GetUpSkill : public ObjectSkill {
   bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target) override;
   /// Feet, hands, pelvis and thighs (get-up pushes off with the hands).
   uint32_t contact_body_mask() const override;
+  /// Already standing clear: a get-up instruction has nothing to do.
+  bool Accomplished(const sim::EnvView& view) const override { return StandingClear(view); }
   /// "seat", "bed", "floor" (a floor clip) or "fall" (a fall state).
   std::string start_label(int env_id) const override;
 
