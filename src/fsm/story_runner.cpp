@@ -103,6 +103,9 @@ LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& f
   p.skill_config.walk.resample_target_on_success = false;
   p.skill_config.walk.rooms = 0;  // the story places the character, in its own scene
   p.skill_config.motion.manifest.clear();
+  // The story binds each instruction's object; the skill's own test (which parts it needs)
+  // decides whether it can pursue it, not the categories it trained on (sit on a bed).
+  p.skill_config.object.object_categories.clear();
   p.skill_config.skill = skill;
   return p;
 }

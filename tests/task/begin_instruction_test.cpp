@@ -41,6 +41,24 @@ TEST(BeginInstructionTest, SitTargetsTheNamedSeat) {
   EXPECT_FALSE(f.setup.skill->BeginInstruction(f.View(), t)) << "not an object of this scene";
 }
 
+// Stories sit on beds: the mattress's foot end (+x, away from the headboard) is the seat
+// front, the target behind it at the seated height, the stand point in front of it.
+TEST(BeginInstructionTest, SitOnABedTargetsTheFootEndOfTheMattress) {
+  Fixture f("sit", "bed");
+  InstructionTarget t;
+  t.object = 0;
+  ASSERT_TRUE(f.setup.skill->BeginInstruction(f.View(), t));
+  const auto mattress = f.setup.context.scene->objects[0].FindPart("mattress")->mesh.Bounds();
+  const Eigen::Vector3d g = f.setup.skill->goal(0, humanoid::kCjPelvis);
+  const SkillConfig& c = f.setup.skill->config();
+  EXPECT_NEAR(g.x(), mattress.max.x() - c.sit.target_behind_edge, 1e-6);
+  EXPECT_NEAR(g.y(), mattress.center().y(), 1e-6);
+  EXPECT_NEAR(g.z(), mattress.max.z() + c.sit.pelvis_height, 1e-6);
+  auto* sit = dynamic_cast<SitSkill*>(f.setup.skill.get());
+  ASSERT_NE(sit, nullptr);
+  EXPECT_GT(sit->anchor(0).x(), mattress.max.x()) << "the stand point is in front of the foot end";
+}
+
 TEST(BeginInstructionTest, ReachUsesCaptionHandAndHeight) {
   Fixture f("reach", "shelf");
   auto* reach = dynamic_cast<ReachSkill*>(f.setup.skill.get());

@@ -24,6 +24,9 @@ struct SurfaceTask {
   std::string clip_skill;   ///< Motion clips of this label feed reference init.
   std::string what;         ///< The object it needs, for "no suitable object" errors.
   std::string pelvis_part;  ///< The part the pelvis goes on (kSeatPart, kMattressPart).
+  /// The part used on objects without pelvis_part ("" = none; sit: a bed's mattress, whose
+  /// foot end at +x is then the seat's front edge).
+  std::string fallback_pelvis_part;
   /// The episode's lateral choice on object g (e.g. SeatLateral; null = always 0).
   double (*lateral)(const ObjectGeometry& g, Rng& rng) = nullptr;
   /// The pelvis target in the object frame for that choice.
@@ -54,7 +57,8 @@ class SurfaceSkill : public ObjectSkill {
 
  protected:
   bool Accepts(const ObjectGeometry& g) const override {
-    return g.part(task_.pelvis_part) != nullptr;
+    return g.part(task_.pelvis_part) != nullptr ||
+           (!task_.fallback_pelvis_part.empty() && g.part(task_.fallback_pelvis_part) != nullptr);
   }
   bool observes_object() const override { return true; }
   double ClipContactTime(int clip) const override;

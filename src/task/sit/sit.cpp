@@ -9,24 +9,30 @@ namespace sims::task {
 std::vector<std::string> SeatCategories() { return {"chair", "armchair", "sofa", "stool"}; }
 
 namespace {
+// The surface sat on: the seat, or on a bed (stories sit on beds) its mattress, whose foot end
+// faces +x like a seat's front with the headboard behind like a back rest.
+const scene::Aabb& SeatOf(const ObjectGeometry& g) {
+  return g.part_local(g.part(kSeatPart) ? kSeatPart : kMattressPart);
+}
+
 SurfaceTask SitTask() {
   SurfaceTask t;
   t.clip_skill = "sit";
-  t.what = "object with a 'seat surface' part";
+  t.what = "object with a 'seat surface' part (or a bed's mattress)";
   t.pelvis_part = kSeatPart;
+  t.fallback_pelvis_part = kMattressPart;
   t.lateral = SeatLateral;
   // Where the sit clips put the pelvis: behind the seat's front edge (at most its centre) and
   // the seated pelvis height above the seat top.
   t.target_local = [](const ObjectGeometry& g, double lateral, const SkillConfig& c) {
-    const scene::Aabb& seat = g.part_local(kSeatPart);
+    const scene::Aabb& seat = SeatOf(g);
     const Eigen::Vector3d mid = seat.center();
     return Eigen::Vector3d(std::max(mid.x(), seat.max.x() - c.sit.target_behind_edge),
                            mid.y() + lateral, seat.max.z() + c.sit.pelvis_height);
   };
   // A stand point in front of the seat (objects face +x).
   t.anchor_local = [](const ObjectGeometry& g, double lateral) {
-    return Eigen::Vector3d(g.local.max.x() + kStandDistance,
-                           g.part_local(kSeatPart).center().y() + lateral, 0.0);
+    return Eigen::Vector3d(g.local.max.x() + kStandDistance, SeatOf(g).center().y() + lateral, 0.0);
   };
   t.extra_joint = humanoid::kCjTorso;
   // The back rest, when the config asks for it and the seat has one.
