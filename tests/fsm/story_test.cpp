@@ -479,6 +479,30 @@ TEST(StoryMixedWidthTest, EachPolicySeesItsOwnSkillsObservation) {
   EXPECT_GT(calls["sit"], 0);
 }
 
+// One environment computes every policy's self observation at one control rate, so a policy
+// trained at another rate is the set's mistake, named with its file.
+TEST(StoryMixedWidthTest, APolicyWithOtherEnvSettingsIsRejectedByName) {
+  const auto dir = TinyPolicySet().parent_path();
+  learning::TrainConfig c = sims::testing::TinyTrainConfig("sit");
+  c.skill.reference_init_prob = 0;
+  c.env.substeps = 2;  // 60 Hz control instead of the walk policy's 30 Hz
+  learning::TrainOptions o;
+  o.out_dir = dir / "sit_60hz";
+  learning::RunTraining(c, o);
+  std::ofstream(dir / "policies_60hz.json")
+      << R"({"policies": {"walk": "walk/policy.pt", "sit": "sit_60hz/policy.pt"}})";
+  const PolicySet policies = LoadPolicySet(dir / "policies_60hz.json");
+  try {
+    StoryRunner runner(std::make_shared<scene::Scene>(scene::BuiltinScene("chair")), policies,
+                       StoryOptions{});
+    FAIL() << "a policy at another control rate was accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("sit_60hz"), std::string::npos) << what;
+    EXPECT_NE(what.find("substeps"), std::string::npos) << what;
+  }
+}
+
 // The same stories with the real (tiny) policies, batched (each policy's rows of its own
 // width in one call) and one at a time, to the bit.
 TEST(StoryMixedWidthTest, BatchedStoriesWithBothWidthsEqualStoriesRunAlone) {
