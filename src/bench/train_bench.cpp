@@ -57,7 +57,7 @@ nlohmann::json RunLearnerBenchmark(const std::filesystem::path& config_path, int
   if (config.learner.amp.enabled && setup.context.motions)
     demo = std::make_shared<MotionDemoSource>(
         setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr,
-        config.env.amp_history);
+        config.env.amp_history, 1, config.skill.balance_emotions);
   else
     config.learner.amp.enabled = false;
   Trainer trainer(std::make_shared<SimVecEnv>(env), demo, config.learner);

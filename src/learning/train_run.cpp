@@ -230,7 +230,7 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
                       "a motion manifest when learner.amp.enabled is true", "none");
     demo = std::make_shared<MotionDemoSource>(
         setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr,
-        config.env.amp_history);
+        config.env.amp_history, 1, config.skill.balance_emotions);
   }
   Trainer trainer(vec, demo, config.learner, options.comm, options.check_every);
   if (writer) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
 
 #include "sims/core/error.h"
 #include "sims/humanoid/model_builder.h"
@@ -62,6 +64,15 @@ MotionLibrary::MotionLibrary(std::shared_ptr<const humanoid::Humanoid> humanoid,
   }
   double sum = 0;
   for (double w : weights_) cumulative_.push_back(sum += w);
+  std::map<std::string, std::vector<int>> by_emotion;
+  for (int i = 0; i < num_clips(); ++i) by_emotion[clips_[i].meta().emotion].push_back(i);
+  for (auto& [emotion, ids] : by_emotion) {
+    double total = 0;
+    std::vector<double> cumulative;
+    for (int i : ids) cumulative.push_back(total += weights_[i]);
+    emotion_clips_.push_back(std::move(ids));
+    emotion_cumulative_.push_back(std::move(cumulative));
+  }
 }
 
 MotionLibrary MotionLibrary::Load(const fs::path& manifest_path,
@@ -102,11 +113,21 @@ humanoid::ObsOptions MotionLibrary::obs_options() const {
   return o;
 }
 
-int MotionLibrary::SampleClip(Rng& rng) const {
+namespace {
+// Index of a draw u ∈ [0, total) in a cumulative weight list.
+int DrawIndex(const std::vector<double>& cumulative, double u) {
+  const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), u);
+  return std::min(static_cast<int>(it - cumulative.begin()),
+                  static_cast<int>(cumulative.size()) - 1);
+}
+}  // namespace
+
+int MotionLibrary::SampleClip(Rng& rng, bool balance_emotions) const {
   SIMS_CHECK(!clips_.empty());
-  const double u = rng.Uniform() * cumulative_.back();
-  const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), u);
-  return std::min(static_cast<int>(it - cumulative_.begin()), num_clips() - 1);
+  if (!balance_emotions) return DrawIndex(cumulative_, rng.Uniform() * cumulative_.back());
+  const auto e = static_cast<size_t>(rng.UniformInt(static_cast<int64_t>(emotion_clips_.size())));
+  const std::vector<double>& c = emotion_cumulative_[e];
+  return emotion_clips_[e][DrawIndex(c, rng.Uniform() * c.back())];
 }
 
 double MotionLibrary::SampleTime(int clip, Rng& rng, double max_fraction) const {
@@ -144,14 +165,14 @@ void MotionLibrary::AmpWindow(int clip, double t, mjData* scratch, float* out, i
 }
 
 void MotionLibrary::SampleAmpDemos(Rng& rng, int count, float* out, int* clip_ids, int threads,
-                                   int steps) const {
+                                   int steps, bool balance_emotions) const {
   if (steps <= 0) steps = options_.amp_steps;
   // Draw every (clip, time) first so the result does not depend on the thread count.
   std::vector<int> ids(count);
   std::vector<double> times(count);
   const double span = (steps - 1) * options_.control_dt;
   for (int i = 0; i < count; ++i) {
-    ids[i] = SampleClip(rng);
+    ids[i] = SampleClip(rng, balance_emotions);
     const double len = clips_[ids[i]].duration();
     times[i] = len > span ? rng.Uniform(span, len) : rng.Uniform() * len;
   }

@@ -1,5 +1,7 @@
 #include "sims/motion/motion_library.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "common/test_util.h"
@@ -95,6 +97,26 @@ TEST(MotionLibraryTest, SamplingIsDeterministicAndWeighted) {
   EXPECT_EQ(d1, d2);
   EXPECT_EQ(c1, c2);
   EXPECT_EQ(s1.NextU64(), s2.NextU64());
+}
+
+// Balanced draws: each emotion (here the default one and "sad") half the time, and within an
+// emotion by weight; the demo windows follow the same draw.
+TEST(MotionLibraryTest, BalancedEmotionsDrawEachEmotionEquallyOften) {
+  const MotionLibrary lib = SmallLibrary();
+  ASSERT_NE(lib.clip(0).meta().emotion, "sad");
+  ASSERT_EQ(lib.clip(0).meta().emotion, lib.clip(2).meta().emotion);
+  Rng rng(3);
+  std::vector<int> counts(3, 0);
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) ++counts[lib.SampleClip(rng, true)];
+  EXPECT_NEAR(counts[1] / double(n), 0.5, 0.03);  // 0.6 by weight alone
+  EXPECT_NEAR(counts[0] / double(n), 0.25, 0.03);
+  EXPECT_NEAR(counts[2] / double(n), 0.25, 0.03);
+  const int m = 1000;
+  std::vector<float> windows(static_cast<size_t>(m) * 1250);
+  std::vector<int> clips(m);
+  lib.SampleAmpDemos(rng, m, windows.data(), clips.data(), 1, 0, true);
+  EXPECT_NEAR(std::count(clips.begin(), clips.end(), 1) / double(m), 0.5, 0.06);
 }
 
 TEST(MotionLibraryTest, HistoryAndWindowOrder) {

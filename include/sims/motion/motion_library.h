@@ -116,8 +116,9 @@ class MotionLibrary {
   /// Observation options matching the environment's.
   humanoid::ObsOptions obs_options() const;
 
-  /// A clip index drawn by weight.
-  int SampleClip(Rng& rng) const;
+  /// A clip index drawn by weight; with `balance_emotions`, an emotion first (each one present
+  /// equally likely: the emotional clips are few), then one of its clips by weight.
+  int SampleClip(Rng& rng, bool balance_emotions = false) const;
   /// A time in clip i, uniform in [0, max_fraction · duration].
   double SampleTime(int clip, Rng& rng, double max_fraction = 1.0) const;
   /// Reference state at a given clip time (history clamped at t = 0, as CALM).
@@ -130,12 +131,12 @@ class MotionLibrary {
   void AmpObservation(int clip, double t, mjData* scratch, float* out) const;
   /// One AMP window [t, t−dt, …] (`steps` × 125 values; 0 = amp_steps), times clamped at 0.
   void AmpWindow(int clip, double t, mjData* scratch, float* out, int steps = 0) const;
-  /// `count` demo windows: clip by weight, t ~ U[(steps−1)·dt, duration] (U[0, duration] for
-  /// shorter clips). Writes [count, steps·125] to `out` and the clip indices to `clips` (may
-  /// be null). `steps` is the window length (0 = amp_steps). Deterministic for a seed at any
-  /// thread count.
+  /// `count` demo windows: clip by weight (SampleClip with `balance_emotions`),
+  /// t ~ U[(steps−1)·dt, duration] (U[0, duration] for shorter clips). Writes
+  /// [count, steps·125] to `out` and the clip indices to `clips` (may be null). `steps` is the
+  /// window length (0 = amp_steps). Deterministic for a seed at any thread count.
   void SampleAmpDemos(Rng& rng, int count, float* out, int* clips = nullptr, int threads = 1,
-                      int steps = 0) const;
+                      int steps = 0, bool balance_emotions = false) const;
   /// Per-frame AMP observations of clip i resampled at `fps` ([frames, 125]).
   std::vector<float> ClipAmpFeatures(int clip, double fps = 30.0) const;
 
@@ -148,6 +149,9 @@ class MotionLibrary {
   std::vector<MotionClip> clips_;
   std::vector<double> weights_;
   std::vector<double> cumulative_;
+  // Per emotion (sorted by name): its clips and their cumulative weights.
+  std::vector<std::vector<int>> emotion_clips_;
+  std::vector<std::vector<double>> emotion_cumulative_;
 };
 
 }  // namespace sims::motion

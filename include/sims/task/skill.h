@@ -66,7 +66,8 @@ struct SkillConfig {
   /// Draw an episode's style emotion first (uniform over the emotions of the skill's clips),
   /// then a clip of it, instead of a clip uniformly: the synthetic walk clips are 32 neutral
   /// and 2 of each other emotion (plus mirrors), so a uniform draw gives each emotion 4 % of
-  /// the episodes (DrawStyleClip).
+  /// the episodes (DrawStyleClip). The AMP demonstrations are balanced the same way, so a
+  /// conditional discriminator sees each emotion's demos as often as its episodes.
   bool balance_emotions = false;
   double reference_init_prob = 0.5;          ///< Hybrid init: P(reference state).
   double reference_init_max_fraction = 1.0;  ///< Reference times in [0, f·duration].
