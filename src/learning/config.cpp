@@ -42,6 +42,7 @@ void AmpConfig::Validate() const {
   Require(replay_keep_prob >= 0 && replay_keep_prob <= 1, "replay_keep_prob", "a probability");
   Require(demo_pool_size > 0, "demo_pool_size", "a positive count");
   Require(batch_size > 0, "batch_size", "a positive count");
+  Require(disc_epochs >= 0, "disc_epochs", "a mini-epoch count ≥ 0 (0 = every mini-epoch)");
   Require(demo_refresh >= 0 && demo_refresh <= demo_pool_size, "demo_refresh",
           "a count in [0, demo_pool_size]");
   Require(grad_norm >= 0, "grad_norm", "a non-negative norm (0 = no clipping)");

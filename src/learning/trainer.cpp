@@ -130,7 +130,7 @@ struct Trainer::Impl {
     double actor = 0, critic = 0, bounds = 0, disc = 0, grad_penalty = 0, demo_accuracy = 0,
            agent_accuracy = 0, clip_fraction = 0, kl = 0;
     double minibatch_kl = 0;  // this rank's share of the last minibatch's KL
-    int64_t steps = 0, disc_samples = 0, minibatch = 0;
+    int64_t steps = 0, disc_steps = 0, disc_samples = 0, minibatch = 0;
   };
   /// Seconds of the update phases (for the time split).
   struct Timings {
@@ -648,7 +648,9 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
   for (const auto& p : ac->named_parameters())
     (p.key().rfind("actor", 0) == 0 ? actor_params : critic_params).push_back(p.value());
   const auto disc_params = use_amp ? disc->parameters() : std::vector<torch::Tensor>{};
+  const std::vector<torch::Tensor> no_params;
   for (int epoch = 0; epoch < ppo.mini_epochs; ++epoch) {
+    const bool train_disc = use_amp && (cfg.amp.disc_epochs == 0 || epoch < cfg.amp.disc_epochs);
     const auto perm = Permutation(rng, total);
     for (int64_t k = 0; k < n_mb; ++k) {
       auto t_phase = Clock::now();
@@ -660,23 +662,28 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
         PpoLoss(b, idx, static_cast<double>(idx.size(0)) / static_cast<double>(mb), &u);
       StartReduce(ac_params, &ac_grads);
       timing->ppo += Since(t_phase);
-      if (use_amp) {
+      if (train_disc) {
         t_phase = Clock::now();
         const auto agent_idx = local_of(chunk.slice(0, 0, na_all));
         if (agent_idx.size(0) > 0)
           DiscriminatorLoss(b, agent_idx,
                             static_cast<double>(agent_idx.size(0)) / static_cast<double>(na_all),
                             &u);
+        ++u.disc_steps;
         timing->disc += Since(t_phase);
+      } else {
+        // Zeroed gradients would still move it: Adam steps on its momentum. Undefined ones are
+        // skipped.
+        for (const auto& p : disc_params) p.mutable_grad() = torch::Tensor();
       }
       t_phase = Clock::now();
-      if (use_amp) StartReduce(disc_params, &disc_grads);
-      FinishReduce(ac_params, disc_params);
+      if (train_disc) StartReduce(disc_params, &disc_grads);
+      FinishReduce(ac_params, train_disc ? disc_params : no_params);
       if (ppo.grad_norm > 0) {
         ClipGradNorm(actor_params, ppo.grad_norm);
         ClipGradNorm(critic_params, ppo.grad_norm);
       }
-      if (use_amp && cfg.amp.grad_norm > 0) ClipGradNorm(disc_params, cfg.amp.grad_norm);
+      if (train_disc && cfg.amp.grad_norm > 0) ClipGradNorm(disc_params, cfg.amp.grad_norm);
       optim->step();
       // (While the actor is frozen its KL says nothing: the rate stays.)
       if (ppo.lr_schedule == "adaptive" && iteration >= ppo.actor_warmup_iterations)
@@ -767,10 +774,11 @@ IterationStats Trainer::RunIteration() {
   st.actor_loss = sums[8] / s;
   st.critic_loss = sums[9] / s;
   st.bounds_loss = sums[10] / s;
-  st.disc_loss = sums[11] / s;
-  st.grad_penalty = sums[12] / s;
-  st.disc_acc_demo = sums[13] / s;
-  st.disc_acc_agent = sums[14] / s;
+  const double ds = std::max<int64_t>(u.disc_steps, 1);
+  st.disc_loss = sums[11] / ds;
+  st.grad_penalty = sums[12] / ds;
+  st.disc_acc_demo = sums[13] / ds;
+  st.disc_acc_agent = sums[14] / ds;
   st.clip_fraction = sums[15] / s;
   st.kl = sums[20] / s;
   st.learning_rate = m.learning_rate;

@@ -180,6 +180,35 @@ TEST(TrainerTest, ActorWarmupFreezesTheActorOnly) {
   EXPECT_NE(split(t.FlatParameters()).first, actor0);  // from iteration 3 on it learns
 }
 
+// With disc_epochs = 1 the discriminator trains in the first mini-epoch only: after an
+// iteration its weights are those of a run with one mini-epoch (Adam's momentum must not move
+// them in the later ones), while the policy still takes all its PPO epochs.
+TEST(TrainerTest, DiscriminatorTrainsInItsEpochsOnly) {
+  const size_t disc_n =
+      MakeTrainer(true).FlatParameters().size() - MakeTrainer(false).FlatParameters().size();
+  ASSERT_GT(disc_n, 0u);
+  auto split = [&](const Trainer& t) {
+    const auto p = t.FlatParameters();
+    return std::make_pair(std::vector<float>(p.begin(), p.end() - disc_n),
+                          std::vector<float>(p.end() - disc_n, p.end()));
+  };
+  LearnerConfig one_epoch = ToyConfig(true);
+  one_epoch.ppo.mini_epochs = 1;
+  LearnerConfig first_epoch = ToyConfig(true);
+  first_epoch.amp.disc_epochs = 1;
+  ASSERT_GT(first_epoch.ppo.mini_epochs, 1);
+  Trainer a = MakeTrainer(one_epoch), b = MakeTrainer(first_epoch), all = MakeTrainer(true);
+  const auto st_a = a.RunIteration();
+  const auto st_b = b.RunIteration();
+  all.RunIteration();
+  EXPECT_EQ(split(b).second, split(a).second);
+  EXPECT_NE(split(all).second, split(a).second);
+  EXPECT_NE(split(b).first, split(a).first);  // the PPO epochs went on
+  // The logged discriminator figures average its own steps only.
+  EXPECT_DOUBLE_EQ(st_b.disc_loss, st_a.disc_loss);
+  EXPECT_DOUBLE_EQ(st_b.disc_acc_demo, st_a.disc_acc_demo);
+}
+
 // The adaptive schedule: a KL target far below what an update moves shrinks the rate by 1.5
 // per minibatch step, one far above grows it; the rate is part of the checkpoint.
 TEST(TrainerTest, AdaptiveLearningRateFollowsTheKl) {

@@ -112,6 +112,10 @@ struct AmpConfig {
   int demo_refresh = 0;
   double grad_norm = 1.0;  ///< Discriminator gradient-norm clip, apart from the policy's (0 = off).
   int batch_size = 512;    ///< Demo samples per discriminator step (half replay negatives).
+  /// Mini-epochs per iteration in which the discriminator trains (0 = all of them). ASE takes
+  /// one discriminator step per ~2700 samples; with 2048 samples and 6 epochs of 2 minibatches
+  /// every epoch gives one per ~170, which saturates it and costs half the update.
+  int disc_epochs = 0;
   double mismatch_fraction =
       0.25;  ///< Conditional: demo windows paired with a wrong z as negatives.
 
@@ -134,6 +138,7 @@ struct AmpConfig {
     a->Visit(SIMS_NVP(demo_refresh));
     a->Visit(SIMS_NVP(grad_norm));
     a->Visit(SIMS_NVP(batch_size));
+    a->Visit(SIMS_NVP(disc_epochs));
     a->Visit(SIMS_NVP(mismatch_fraction));
   }
   /// Checks ranges and names.
