@@ -450,14 +450,45 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
   // targets, scaled).
   EXPECT_LE(r.reward, kFeetPhaseWeight + 1e-6);
   r = getup->Step(ViewOf(*s.env, 0));
+  // Standing clear: the rise reward plus the whole clear share.
+  const double rise = GetUpSkill::RiseReward(GetUpSkill::RiseInputsOf(s.env->bodies(0)), stand,
+                                             getup->default_head_height());
   EXPECT_NEAR(
       r.reward,
-      kFeetPhaseWeight + (1 - kFeetPhaseWeight) *
-                             GetUpSkill::RiseReward(GetUpSkill::RiseInputsOf(s.env->bodies(0)),
-                                                    stand, getup->default_head_height()),
-      1e-5);
+      kFeetPhaseWeight + (1 - kFeetPhaseWeight) * ((1 - kClearWeight) * rise + kClearWeight), 1e-5);
   EXPECT_TRUE(r.truncate);
   EXPECT_EQ(getup->goal_mask(0), 1u << humanoid::kCjPelvis);
+}
+
+// The clear share of the rise reward is paid only while the success test holds: the same
+// standing pose earns (1 − w)·c less when the test is made to fail (a head threshold above the
+// head), so finishing pays more than standing about near the seat.
+TEST(GetUpSkillTest, StandingPaysTheClearShareOnlyWhenTheSuccessTestHolds) {
+  auto rise_step = [](double standing_head_height, double* rise) {
+    SkillConfig c = GetUpConfig();
+    c.reference_init_prob = 0;
+    c.object.max_contact_force = 0;
+    c.getup.standing_head_height = standing_head_height;
+    auto s = MakeSkillEnv(c, 1);
+    auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+    const Eigen::Vector2d stand = getup->stand_point(0);
+    s.env->SetState(0, PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.89)));
+    getup->Step(ViewOf(*s.env, 0));  // feet on the disk: into the rise phase
+    EXPECT_EQ(getup->phase(0), GetUpSkill::kRisePhase);
+    *rise = GetUpSkill::RiseReward(GetUpSkill::RiseInputsOf(s.env->bodies(0)), stand,
+                                   getup->default_head_height());
+    return getup->Step(ViewOf(*s.env, 0));
+  };
+  double rise_clear = 0, rise_not = 0;
+  const auto clear = rise_step(GetUpConfig().getup.standing_head_height, &rise_clear);
+  const auto not_clear = rise_step(2.5, &rise_not);
+  EXPECT_TRUE(clear.success);
+  EXPECT_FALSE(not_clear.success);
+  EXPECT_NEAR(rise_clear, rise_not, 1e-12);
+  const double w = kFeetPhaseWeight, c = kClearWeight;
+  EXPECT_NEAR(clear.reward, w + (1 - w) * ((1 - c) * rise_clear + c), 1e-5);
+  EXPECT_NEAR(not_clear.reward, w + (1 - w) * (1 - c) * rise_not, 1e-5);
+  EXPECT_GT(clear.reward - not_clear.reward, 0.15);
 }
 
 // Success is standing clear: upright with the head high, only the feet touching anything and

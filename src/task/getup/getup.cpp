@@ -350,6 +350,7 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
   double sq = 0, mx = 0;
   SetGetUpGoals(i, b, &sq, &mx);
   double r = 0;
+  const bool clear = StandingClear(view);
   if (getup_[i].phase == kFeetPhase) {
     r = kFeetPhaseWeight *
         ContactReward(getup_[i].stand, root, vel, facing, config_.target_speed, sq);
@@ -358,12 +359,13 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
       SetGetUpGoals(i, b, &sq, &mx);
     }
   } else {
+    const double rise = RiseReward(RiseInputsOf(b), getup_[i].stand, head_height_);
     r = kFeetPhaseWeight +
-        (1.0 - kFeetPhaseWeight) * RiseReward(RiseInputsOf(b), getup_[i].stand, head_height_);
+        (1.0 - kFeetPhaseWeight) * ((1.0 - kClearWeight) * rise + (clear ? kClearWeight : 0.0));
   }
   env_[i].error =
       std::max(config_.getup.standing_pelvis_height - b.pos[humanoid::kPelvis].z(), 0.0);
-  return Finish(view, r, StandingClear(view));
+  return Finish(view, r, clear);
 }
 
 void GetUpState::Serialize(StateArchive* a) {

@@ -20,7 +20,8 @@
 //     point nearest to the pelvis; on the floor: the start point); r = w·contact reward
 //     (contact_reward.h, w = kFeetPhaseWeight) with anchor s and g_j the nearest disk points of the
 //     feet. The phase ends when both feet are within contact_success_threshold of the disk.
-//   rise phase: r = w + (1 − w)·RiseReward, RiseReward = U·H·(0.6 + 0.4·B) + 0.15·S,
+//   rise phase: r = w + (1 − w)·((1 − c)·RiseReward + c·[standing clear]) (c = kClearWeight),
+//     RiseReward = U·H·(0.6 + 0.4·B) + 0.15·S,
 //     H = 0.4·exp(−20·dp²) + 0.3·exp(−8·dh²) + 0.15·exp(−2·dh²), dp = max(h*_p − z_pelvis, 0),
 //     dh = max(h*_h − z_head, 0), U = 0.6 + 0.2·max(up_pelvis, 0) + 0.2·max(up_torso, 0),
 //     B = exp(−10·‖m − f‖²) with m the mean of the pelvis, torso and head (xy) and f the feet's
@@ -35,7 +36,10 @@
 //     forward, trunk tipped back, head 0.5 m behind the pelvis and down within 0.7 s; B pays
 //     for rising over the feet instead (the clips' seat-off has the weight over the feet).
 //     Sitting now pays ~0.37 and the crouch ~0.55; the wide head kernel still grades a lying
-//     head.
+//     head. The clear term: standing touching the seat paid as much as standing clear, and
+//     success only ends the episode (its value bootstrapped), so nothing paid for finishing:
+//     from risen seat starts the policy left the hold uncounted, stepped about and fell (a
+//     third of the episodes) or ended bent over (third session's probe, getup TRAINING.md).
 // The observation always carries the pelvis goal (s at standing height), plus the feet goals
 // in the feet phase. Success (StandingClear): standing upright (pelvis and head high enough,
 // pelvis and torso up axes within ~37° of vertical) with nothing but the feet touching
@@ -55,6 +59,8 @@ inline constexpr double kStandDiskRadius = 0.3;
 /// Largest feet-phase reward and smallest rise-phase reward: finishing the feet phase never
 /// lowers the reward.
 inline constexpr double kFeetPhaseWeight = 0.2;
+/// Share of the rise-phase reward paid only while standing clear (the success test).
+inline constexpr double kClearWeight = 0.2;
 
 /// A precomputed fall state: the pose (root xy at the origin) and how far its bodies reach
 /// from the root horizontally, for placing it clear of furniture.
