@@ -10,9 +10,13 @@ namespace sims::task {
 double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
                      const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
                      double target_speed, double contact_sq_sum) {
-  const double r_near = std::exp(-10.0 * contact_sq_sum);
-  return kNearWeight * r_near +
+  return kNearWeight * NearReward(contact_sq_sum) +
          (1.0 - kNearWeight) * FarReward(anchor, root, velocity, facing, target_speed);
+}
+
+double NearReward(double contact_sq_sum, double wide_share) {
+  return (1.0 - wide_share) * std::exp(-10.0 * contact_sq_sum) +
+         wide_share * std::exp(-contact_sq_sum);
 }
 
 double FarReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,

@@ -465,11 +465,15 @@ bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::I
 }
 
 sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view, double goal_sum,
-                                                   double d) {
+                                                   double d, double wide_share) {
+  const ObjectState& e = env_[view.env_id];
   env_[view.env_id].error = d;
-  const double r = ContactReward(env_[view.env_id].anchor_W, view.pose->root_pos.head<2>(),
-                                 view.pose->root_lin_vel.head<2>(), FacingOf(*view.pose),
-                                 config_.target_speed, goal_sum);
+  const Eigen::Vector2d root = view.pose->root_pos.head<2>();
+  const bool at_target = (e.target_W.head<2>() - root).squaredNorm() <= kFarDistanceSq;
+  const double r_far = at_target ? 1.0
+                                 : FarReward(e.anchor_W, root, view.pose->root_lin_vel.head<2>(),
+                                             FacingOf(*view.pose), config_.target_speed);
+  const double r = kNearWeight * NearReward(goal_sum, wide_share) + (1.0 - kNearWeight) * r_far;
   return Finish(view, r, d < config_.object.contact_success_threshold);
 }
 

@@ -73,7 +73,7 @@ void SurfaceSkill::OnReset(const sim::EnvView& view, Rng&) {
 sim::TaskStepResult SurfaceSkill::Step(const sim::EnvView& view) {
   double d = 0;
   const double sum = UpdateGoals(view.env_id, *view.bodies, &d);
-  return ContactRewardStep(view, sum, d);
+  return ContactRewardStep(view, sum, d, task_.wide_near_share);
 }
 
 bool SurfaceSkill::ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) {

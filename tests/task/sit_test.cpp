@@ -40,6 +40,10 @@ TEST(ContactRewardTest, MatchesTheStatedFormula) {
   const double r_far3 = 0.5 * std::exp(-0.5 * 9) + 0.4 * std::exp(-0.5) + 0.1 * 0.5;
   EXPECT_NEAR(ContactReward(anchor, zero, 0.5 * x, half, 1.0, 0.0), 0.7 + 0.3 * r_far3, 1e-12);
   EXPECT_NEAR(FarReward(anchor, zero, 0.5 * x, half, 1.0), r_far3, 1e-12);
+  // The near term with a share of the wide kernel: (1 − s)·exp(−10·Σ) + s·exp(−Σ).
+  EXPECT_NEAR(NearReward(1.4), std::exp(-14.0), 1e-15);
+  EXPECT_NEAR(NearReward(1.4, 0.5), 0.5 * std::exp(-14.0) + 0.5 * std::exp(-1.4), 1e-12);
+  EXPECT_NEAR(NearReward(0.0, 0.5), 1.0, 1e-15);
 }
 
 SkillConfig SitConfig() {

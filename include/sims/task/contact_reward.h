@@ -2,8 +2,13 @@
 //
 // Object skills (sit, lie, reach, get-up; InterScene/TokenHSI's near/far split):
 //   r = 0.7·r_near + 0.3·r_far
-//   r_near = exp(−10·Σ_j ‖g_j − x_j‖²) over the skill's goal joints (fixed, object-local goals)
-//   r_far  = 1 within √0.5 m (xy) of the anchor x* (a stand point in front of the object), else
+//   r_near = exp(−10·Σ_j ‖g_j − x_j‖²) over the skill's goal joints (fixed, object-local goals);
+//            a skill whose joints start far from their goals once at the object (lie: pelvis and
+//            head ~1 m from a bed's centre line and pillow when seated on its edge) mixes in a
+//            wide kernel: (1 − s)·exp(−10·Σ) + s·exp(−Σ), where the narrow one alone is ~0
+//   r_far  = 1 within √0.5 m (xy) of the anchor x* (a stand point in front of the object) or, in
+//            ObjectSkill::ContactRewardStep, of the target itself (a bed's centre is ~1 m from
+//            the stand point beside it: lying there must not cost the far reward), else
 //            0.5·exp(−0.5·d²) + 0.4·r_speed + 0.1·max(0, d̂·facing),
 //            r_speed = exp(−2·(v* − d̂·ẋ)²) when moving towards x* (d̂·ẋ > 0), 0 otherwise.
 //
@@ -38,6 +43,9 @@ inline constexpr double kNearWeight = 0.7;
 double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
                      const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
                      double target_speed, double contact_sq_sum);
+
+/// r_near of ContactReward with a share `wide_share` of the wide kernel exp(−Σ).
+double NearReward(double contact_sq_sum, double wide_share = 0.0);
 
 /// r_far of ContactReward: 1 within √kFarDistanceSq of `anchor`, else the approach terms.
 double FarReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,

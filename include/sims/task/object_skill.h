@@ -235,9 +235,11 @@ class ObjectSkill : public Skill {
   /// Reference init from `reference_clips_` placed on env i's furniture (sit, lie) at
   /// `lateral` m along the seat.
   bool FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::InitialState* init);
-  /// Contact reward towards the env's far anchor with Σ‖g_j − x_j‖² = goal_sum, and success
-  /// when the measured distance d is within the threshold.
-  sim::TaskStepResult ContactRewardStep(const sim::EnvView& view, double goal_sum, double d);
+  /// Contact reward towards the env's far anchor (r_far = 1 at the anchor or the target) with
+  /// Σ‖g_j − x_j‖² = goal_sum and a `wide_share` of the wide near kernel (NearReward), and
+  /// success when the measured distance d is within the threshold.
+  sim::TaskStepResult ContactRewardStep(const sim::EnvView& view, double goal_sum, double d,
+                                        double wide_share = 0.0);
   /// Ends a step: success counter, success-held truncation, excessive-force termination.
   sim::TaskStepResult Finish(const sim::EnvView& view, double reward, bool success);
 

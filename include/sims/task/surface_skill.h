@@ -38,6 +38,8 @@ struct SurfaceTask {
   /// The parts of object g the extra joint may touch (nearest wins; none = no goal).
   std::vector<int> (*extra_parts)(const ObjectGeometry& g, const SkillConfig& c) = nullptr;
   bool extra_in_success = false;  ///< The extra joint's distance counts for success.
+  /// Share of the wide kernel in r_near (contact_reward.h; lie: its joints start ~1 m away).
+  double wide_near_share = 0.0;
 };
 
 /// A skill that rests body joints on furniture surfaces (see the file comment).
