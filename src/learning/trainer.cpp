@@ -651,6 +651,10 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
   const std::vector<torch::Tensor> no_params;
   for (int epoch = 0; epoch < ppo.mini_epochs; ++epoch) {
     const bool train_disc = use_amp && (cfg.amp.disc_epochs == 0 || epoch < cfg.amp.disc_epochs);
+    // Zeroed gradients would still move it (Adam steps on its momentum); undefined ones are
+    // skipped, and zero_grad and the PPO backward leave them undefined for the whole epoch.
+    if (use_amp && !train_disc)
+      for (const auto& p : disc_params) p.mutable_grad() = torch::Tensor();
     const auto perm = Permutation(rng, total);
     for (int64_t k = 0; k < n_mb; ++k) {
       auto t_phase = Clock::now();
@@ -671,10 +675,6 @@ Trainer::Impl::UpdateTotals Trainer::Impl::Update(const Batch& b, Timings* timin
                             &u);
         ++u.disc_steps;
         timing->disc += Since(t_phase);
-      } else {
-        // Zeroed gradients would still move it: Adam steps on its momentum. Undefined ones are
-        // skipped.
-        for (const auto& p : disc_params) p.mutable_grad() = torch::Tensor();
       }
       t_phase = Clock::now();
       if (train_disc) StartReduce(disc_params, &disc_grads);
