@@ -8,6 +8,8 @@
 #include "sims/core/log.h"
 #include "sims/core/paths.h"
 #include "sims/eval/motion_metrics.h"
+#include "sims/humanoid/features.h"
+#include "sims/humanoid/state.h"
 #include "sims/io/gltf_export.h"
 #include "sims/io/motion_record.h"
 #include "sims/language/embedding_bank.h"
@@ -27,7 +29,11 @@ namespace {
 class RecordingHook : public sim::TaskHook {
  public:
   RecordingHook(std::shared_ptr<task::Skill> skill, int n)
-      : skill_(std::move(skill)), error_(n, 0.0), completed_(n, 0), num_steps_(n, 1) {
+      : skill_(std::move(skill)),
+        error_(n, 0.0),
+        offset_(n, Eigen::Vector3d::Zero()),
+        completed_(n, 0),
+        num_steps_(n, 1) {
     unified_ = dynamic_cast<task::UnifiedSkill*>(skill_.get());
   }
   int obs_dim() const override { return skill_->obs_dim(); }
@@ -46,6 +52,7 @@ class RecordingHook : public sim::TaskHook {
     const sim::TaskStepResult r = skill_->Step(v);
     const int i = v.env_id;
     error_[i] = skill_->goal_error(v);
+    offset_[i] = GoalOffset(v);
     if (unified_) {  // a chain of contacts: progress through its steps
       completed_[i] = unified_->steps_completed(i);
       num_steps_[i] = static_cast<int>(unified_->steps(i).size());
@@ -54,14 +61,28 @@ class RecordingHook : public sim::TaskHook {
   }
 
   double error(int i) const { return error_[i]; }
+  const Eigen::Vector3d& offset(int i) const { return offset_[i]; }
   int completed(int i) const { return completed_[i]; }
   int num_steps(int i) const { return num_steps_[i]; }
   bool multi_step() const { return unified_ != nullptr; }
 
  private:
+  // The first active contact joint's offset from its goal in the heading frame (x forward,
+  // y left, z up): a seated pelvis's offset tells a target-placement bias from aiming noise.
+  Eigen::Vector3d GoalOffset(const sim::EnvView& v) const {
+    const uint32_t mask = skill_->goal_mask(v.env_id);
+    for (int j = 0; j < humanoid::kNumContactJoints; ++j) {
+      if (!(mask & (1u << j))) continue;
+      const Eigen::Vector3d p_WJ = humanoid::ContactJointPosition(*v.bodies, j);
+      return humanoid::HeadingInverse(v.pose->root_rot) * (p_WJ - skill_->goal(v.env_id, j));
+    }
+    return Eigen::Vector3d::Zero();
+  }
+
   std::shared_ptr<task::Skill> skill_;
   task::UnifiedSkill* unified_ = nullptr;
   std::vector<double> error_;
+  std::vector<Eigen::Vector3d> offset_;
   std::vector<int> completed_, num_steps_;
 };
 
@@ -174,6 +195,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
                    {"success_step", t.success_step},
                    {"contact_error", t.contact_error},
                    {"min_contact_error", t.min_contact_error},
+                   {"goal_offset", {t.goal_offset.x(), t.goal_offset.y(), t.goal_offset.z()}},
                    {"steps_completed", t.steps_completed},
                    {"num_steps", t.num_steps},
                    {"length", t.length}});
@@ -383,6 +405,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
                env.end_reasons()[i] == sim::EndReason::kUnstable;
       t.force_end = env.end_reasons()[i] == sim::EndReason::kTaskTerminate;
       t.contact_error = hook->error(i);
+      t.goal_offset = hook->offset(i);
       if (hook->multi_step()) {
         t.steps_completed = hook->completed(i);
         t.num_steps = hook->num_steps(i);

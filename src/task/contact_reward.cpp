@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sims/core/error.h"
 #include "sims/scene/scene.h"
 
 namespace sims::task {
@@ -14,9 +15,10 @@ double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
          (1.0 - kNearWeight) * FarReward(anchor, root, velocity, facing, target_speed);
 }
 
-double NearReward(double contact_sq_sum, double wide_share) {
-  return (1.0 - wide_share) * std::exp(-10.0 * contact_sq_sum) +
-         wide_share * std::exp(-contact_sq_sum);
+double NearReward(double contact_sq_sum, double wide_share, double precise_share) {
+  SIMS_DCHECK(wide_share >= 0 && precise_share >= 0 && wide_share + precise_share <= 1);
+  return (1.0 - wide_share - precise_share) * std::exp(-10.0 * contact_sq_sum) +
+         wide_share * std::exp(-contact_sq_sum) + precise_share * std::exp(-100.0 * contact_sq_sum);
 }
 
 double FarReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,

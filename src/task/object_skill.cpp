@@ -51,6 +51,8 @@ void ObjectParams::Validate() const {
   Require(contact_success_threshold > 0, "contact_success_threshold", "a positive distance (m)");
   Require(reference_window >= 0, "reference_window", "a non-negative duration (s), 0 = off");
   Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
+  Require(precise_near_share >= 0 && precise_near_share <= 1, "precise_near_share",
+          "a share in [0, 1]");
 }
 
 scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
@@ -473,7 +475,9 @@ sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view, dou
   const double r_far = at_target ? 1.0
                                  : FarReward(e.anchor_W, root, view.pose->root_lin_vel.head<2>(),
                                              FacingOf(*view.pose), config_.target_speed);
-  const double r = kNearWeight * NearReward(goal_sum, wide_share) + (1.0 - kNearWeight) * r_far;
+  const double r =
+      kNearWeight * NearReward(goal_sum, wide_share, config_.object.precise_near_share) +
+      (1.0 - kNearWeight) * r_far;
   return Finish(view, r, d < config_.object.contact_success_threshold);
 }
 

@@ -255,7 +255,10 @@ TEST(PolicyEvalTest, SitOnHeldOutObjects) {
   for (const auto& t : r.results) {
     EXPECT_LE(t.length, 30);
     EXPECT_GT(t.contact_error, 0.5);  // it starts ≥ 1 m beyond the seat's footprint
+    // The pelvis is the one goal joint (no back rest): its offset measures the same distance.
+    EXPECT_NEAR(t.goal_offset.norm(), t.contact_error, 1e-9);
   }
+  EXPECT_EQ(r.ToJson()["results"][0]["goal_offset"].size(), 3u);
 }
 
 // Get-up trials are grouped by how they started (seat, bed, floor clip, fall state): every

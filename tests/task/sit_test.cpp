@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <iostream>
 
 #include <gtest/gtest.h>
@@ -44,6 +45,11 @@ TEST(ContactRewardTest, MatchesTheStatedFormula) {
   EXPECT_NEAR(NearReward(1.4), std::exp(-14.0), 1e-15);
   EXPECT_NEAR(NearReward(1.4, 0.5), 0.5 * std::exp(-14.0) + 0.5 * std::exp(-1.4), 1e-12);
   EXPECT_NEAR(NearReward(0.0, 0.5), 1.0, 1e-15);
+  // ... and of the precise kernel exp(−100·Σ): at 0.2 m it pays 0.018 where exp(−10·Σ) pays 0.67.
+  EXPECT_NEAR(NearReward(0.04, 0.0, 0.5), 0.5 * std::exp(-0.4) + 0.5 * std::exp(-4.0), 1e-12);
+  EXPECT_NEAR(NearReward(0.04, 0.2, 0.3),
+              0.5 * std::exp(-0.4) + 0.2 * std::exp(-0.04) + 0.3 * std::exp(-4.0), 1e-12);
+  EXPECT_NEAR(NearReward(0.0, 0.2, 0.8), 1.0, 1e-15);
 }
 
 SkillConfig SitConfig() {
@@ -346,6 +352,41 @@ TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
   sit->Step(ViewOf(*s.env, 0));
   EXPECT_GT((sit->anchor(0) - s.env->bodies(0).pos[humanoid::kPelvis].head<2>()).squaredNorm(),
             kFarDistanceSq);
+}
+
+// precise_near_share moves that share of r_near to exp(−100·Σ): 0.15 m above the target pays
+// 0.7·(0.6·exp(−0.225) + 0.4·exp(−2.25)) + 0.3; shares beyond 1 with lie's wide kernel are refused.
+TEST(SitSkillTest, PreciseNearShareSharpensTheNearReward) {
+  SkillConfig c = SitConfig();
+  c.reference_init_prob = 0;
+  c.object.max_contact_force = 0;
+  c.object.precise_near_share = 0.4;
+  auto s = MakeSkillEnv(c, 1);
+  auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
+  const Eigen::Vector3d target = sit->target(0);
+  s.env->SetState(0, PoseAt(target + Eigen::Vector3d(0, 0, 0.15), sit->geometry(0).yaw));
+  const sim::TaskStepResult r = sit->Step(ViewOf(*s.env, 0));
+  EXPECT_NEAR(r.reward, 0.7 * (0.6 * std::exp(-0.225) + 0.4 * std::exp(-2.25)) + 0.3, 1e-5);
+  EXPECT_TRUE(r.success);
+
+  auto expect_error = [](const std::function<void()>& f, const std::vector<std::string>& words) {
+    try {
+      f();
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      for (const auto& w : words)
+        EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << e.what() << " / " << w;
+    }
+  };
+  c.object.precise_near_share = 1.5;
+  expect_error([&] { c.object.Validate(); }, {"precise_near_share", "[0, 1]"});
+  SkillConfig lie = c;
+  lie.skill = "lie";
+  lie.object.object_categories = {"bed"};
+  lie.motion.manifest = testing::SyntheticManifest({"lie"});
+  lie.motion.skills = {"lie"};
+  lie.object.precise_near_share = 0.6;  // lie pays half of r_near from the wide kernel
+  expect_error([&] { MakeSkillEnv(lie, 1); }, {"precise_near_share", "0.5"});
 }
 
 TEST(SitSkillTest, SuccessHeldTruncatesAndForceTerminates) {

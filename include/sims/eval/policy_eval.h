@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "sims/eval/style_classifier.h"
 #include "sims/sim/task_hook.h"
 
@@ -68,13 +70,15 @@ struct TrialResult {
   int success_step = -1;         ///< First control step at which the task completed (−1: never).
   double contact_error = 0;      ///< Skill goal error at the end of the trial (m).
   double min_contact_error = 0;  ///< Smallest skill goal error during the trial (m).
-  int steps_completed = 0;       ///< Plan steps passed (single-step skills: 1 on success).
-  int num_steps = 1;             ///< Plan steps of the trial.
-  int length = 0;                ///< Control steps the trial ran.
-  std::string start;             ///< How the trial started (Skill::start_label; "" = no kinds).
-  std::string caption;           ///< Style evaluation: the caption whose z the policy saw.
-  std::string emotion;           ///< ... its emotion.
-  std::string style;             ///< ... the classifier's label of the motion ("" = too short).
+  /// At the end: the first active contact joint minus its goal, heading frame (x forward, m).
+  Eigen::Vector3d goal_offset = Eigen::Vector3d::Zero();
+  int steps_completed = 0;  ///< Plan steps passed (single-step skills: 1 on success).
+  int num_steps = 1;        ///< Plan steps of the trial.
+  int length = 0;           ///< Control steps the trial ran.
+  std::string start;        ///< How the trial started (Skill::start_label; "" = no kinds).
+  std::string caption;      ///< Style evaluation: the caption whose z the policy saw.
+  std::string emotion;      ///< ... its emotion.
+  std::string style;        ///< ... the classifier's label of the motion ("" = too short).
 };
 
 /// Style evaluation results (PolicyEvalOptions::style_eval).

@@ -44,8 +44,9 @@ double ContactReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,
                      const Eigen::Vector2d& velocity, const Eigen::Vector2d& facing,
                      double target_speed, double contact_sq_sum);
 
-/// r_near of ContactReward with a share `wide_share` of the wide kernel exp(−Σ).
-double NearReward(double contact_sq_sum, double wide_share = 0.0);
+/// r_near of ContactReward with a share `wide_share` of the wide kernel exp(−Σ) and a share
+/// `precise_share` of the precise kernel exp(−100Σ); the shares add up to at most 1.
+double NearReward(double contact_sq_sum, double wide_share = 0.0, double precise_share = 0.0);
 
 /// r_far of ContactReward: 1 within √kFarDistanceSq of `anchor`, else the approach terms.
 double FarReward(const Eigen::Vector2d& anchor, const Eigen::Vector2d& root,

@@ -32,6 +32,10 @@ struct ObjectParams {
   /// it): a short window starts most episodes mid-approach, where the contact is a few steps away.
   double reference_window = 0;
   double max_contact_force = 1e4;  ///< Net contact force (N) that ends an episode (0 = off).
+  /// Share of r_near paid by the precise kernel exp(−100Σ) (NearReward): exp(−10Σ) pays 0.67
+  /// at 0.2 m, so a sit policy perched on the seat's front edge, 0.2 m from its target, earned
+  /// most of the near reward and never moved back (eval goal offsets); 0 = the papers' kernel.
+  double precise_near_share = 0;
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -48,6 +52,7 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(contact_success_threshold));
     a->Visit(SIMS_NVP(reference_window));
     a->Visit(SIMS_NVP(max_contact_force));
+    a->Visit(SIMS_NVP(precise_near_share));
   }
   /// Checks ranges.
   void Validate() const;
