@@ -53,6 +53,8 @@ void ObjectParams::Validate() const {
   Require(max_contact_force >= 0, "max_contact_force", "a non-negative force (N), 0 = off");
   Require(precise_near_share >= 0 && precise_near_share <= 1, "precise_near_share",
           "a share in [0, 1]");
+  Require(wide_near_share >= 0 && wide_near_share + precise_near_share <= 1, "wide_near_share",
+          "a share in [0, 1 − precise_near_share]");
 }
 
 scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
@@ -475,9 +477,9 @@ sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view, dou
   const double r_far = at_target ? 1.0
                                  : FarReward(e.anchor_W, root, view.pose->root_lin_vel.head<2>(),
                                              FacingOf(*view.pose), config_.target_speed);
-  const double r =
-      kNearWeight * NearReward(goal_sum, wide_share, config_.object.precise_near_share) +
-      (1.0 - kNearWeight) * r_far;
+  const double r = kNearWeight * NearReward(goal_sum, wide_share + config_.object.wide_near_share,
+                                            config_.object.precise_near_share) +
+                   (1.0 - kNearWeight) * r_far;
   return Finish(view, r, d < config_.object.contact_success_threshold);
 }
 

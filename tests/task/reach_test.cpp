@@ -102,6 +102,33 @@ TEST(ReachSkillTest, RewardAndThreshold) {
   }
 }
 
+// wide_near_share and precise_near_share split r_near between exp(−Σ), exp(−10Σ), exp(−100Σ):
+// a hand 0.6 m below a high target earns 0.7·(0.3·exp(−0.36) + 0.5·exp(−3.6) + 0.2·exp(−36)) + 0.3.
+TEST(ReachSkillTest, NearKernelSharesFromTheConfig) {
+  SkillConfig c = ReachConfig();
+  c.reference_init_prob = 0;
+  c.object.wide_near_share = 0.3;
+  c.object.precise_near_share = 0.2;
+  auto s = MakeSkillEnv(c, 1);
+  auto* reach = dynamic_cast<ReachSkill*>(s.setup.skill.get());
+  const ObjectGeometry& g = reach->geometry(0);
+  reach->SetTarget(0, humanoid::kCjRightHand,
+                   reach->candidates(reach->object(0), 0).empty()
+                       ? reach->candidates(reach->object(0), 1).front()
+                       : reach->candidates(reach->object(0), 0).front());
+  s.env->SetState(
+      0, PoseAt(Eigen::Vector3d(reach->anchor(0).x(), reach->anchor(0).y(), 0.89), g.yaw + M_PI));
+  const Eigen::Vector3d hand =
+      humanoid::ContactJointPosition(s.env->bodies(0), humanoid::kCjRightHand);
+  reach->SetTarget(0, humanoid::kCjRightHand, hand + Eigen::Vector3d(0, 0, 0.6));
+  const auto r = reach->Step(ViewOf(*s.env, 0));
+  EXPECT_NEAR(r.reward,
+              0.7 * (0.3 * std::exp(-0.36) + 0.5 * std::exp(-3.6) + 0.2 * std::exp(-36.0)) + 0.3,
+              1e-5);
+  c.object.wide_near_share = 0.9;  // 0.9 + 0.2 > 1
+  EXPECT_THROW(c.object.Validate(), Error);
+}
+
 TEST(ReachSkillTest, StartsAreBeforeContactAndInFront) {
   SkillConfig c = ReachConfig();
   c.reference_init_prob = 0.5;

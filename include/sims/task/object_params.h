@@ -36,6 +36,9 @@ struct ObjectParams {
   /// at 0.2 m, so a sit policy perched on the seat's front edge, 0.2 m from its target, earned
   /// most of the near reward and never moved back (eval goal offsets); 0 = the papers' kernel.
   double precise_near_share = 0;
+  /// Share of r_near paid by the wide kernel exp(−Σ), added to the skill's own (lie 0.5): reach
+  /// policies left the hand 0.5–0.7 m below high targets, where exp(−10Σ) is ~0.01 and flat.
+  double wide_near_share = 0;
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -53,6 +56,7 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(reference_window));
     a->Visit(SIMS_NVP(max_contact_force));
     a->Visit(SIMS_NVP(precise_near_share));
+    a->Visit(SIMS_NVP(wide_near_share));
   }
   /// Checks ranges.
   void Validate() const;

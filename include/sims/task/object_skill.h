@@ -236,7 +236,8 @@ class ObjectSkill : public Skill {
   /// `lateral` m along the seat.
   bool FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::InitialState* init);
   /// Contact reward towards the env's far anchor (r_far = 1 at the anchor or the target) with
-  /// Σ‖g_j − x_j‖² = goal_sum and a `wide_share` of the wide near kernel (NearReward), and
+  /// Σ‖g_j − x_j‖² = goal_sum and a `wide_share` (plus the config's) of the wide near kernel
+  /// (NearReward), and
   /// success when the measured distance d is within the threshold.
   sim::TaskStepResult ContactRewardStep(const sim::EnvView& view, double goal_sum, double d,
                                         double wide_share = 0.0);
