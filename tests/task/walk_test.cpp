@@ -273,6 +273,39 @@ TEST(WalkStyleTest, PoseRewardFollowsTheStyleClipsMeanPosture) {
   EXPECT_THROW(c.walk.Validate(), Error);
 }
 
+// The foot-sliding term: exp(−scale·Σ‖v_xy‖²) over the feet below the contact height, and its
+// share of the step reward (the same state with the term off gives r_walk).
+TEST(WalkRewardTest, FootSlideTermPaysFeetThatStayPut) {
+  SkillConfig c;
+  c.walk.foot_slide_weight = 0.25;
+  c.walk.foot_slide_scale = 5.0;
+  auto s = testing::MakeSkillEnv(c, 1);
+  auto* walk = dynamic_cast<WalkSkill*>(s.setup.skill.get());
+  humanoid::BodyStates b = s.env->bodies(0);
+  b.pos[humanoid::kLeftFoot].z() = 0.05;
+  b.lin_vel[humanoid::kLeftFoot] = Eigen::Vector3d(0.3, 0.4, 1.0);  // down: 0.25 m²/s² counts
+  b.pos[humanoid::kRightFoot].z() = 0.2;
+  b.lin_vel[humanoid::kRightFoot] = Eigen::Vector3d(2.0, 0, 0);  // in the air: ignored
+  EXPECT_NEAR(walk->FootSlideReward(b), std::exp(-5.0 * 0.25), 1e-12);
+  b.pos[humanoid::kRightFoot].z() = 0.07;
+  EXPECT_NEAR(walk->FootSlideReward(b), std::exp(-5.0 * 4.25), 1e-12);
+
+  SkillConfig off = c;
+  off.walk.foot_slide_weight = 0;
+  auto plain = testing::MakeSkillEnv(off, 1);
+  // Standing, the whole body gliding at 0.6 m/s: both feet down and sliding.
+  humanoid::HumanoidPose glide = testing::PoseAt(Eigen::Vector3d(0, 0, 0.89));
+  glide.root_lin_vel = Eigen::Vector3d(0.6, 0, 0);
+  s.env->SetState(0, glide);
+  plain.env->SetState(0, glide);
+  const double r_walk = plain.setup.skill->Step(testing::ViewOf(*plain.env, 0)).reward;
+  const double r = walk->Step(testing::ViewOf(*s.env, 0)).reward;
+  EXPECT_NEAR(r, 0.75 * r_walk + 0.25 * walk->FootSlideReward(s.env->bodies(0)), 1e-6);
+  EXPECT_NEAR(walk->FootSlideReward(s.env->bodies(0)), std::exp(-5.0 * 2 * 0.36), 1e-6);
+  c.walk.style_pose_weight = 0.8;  // 0.8 + 0.25 > 1
+  EXPECT_THROW(c.walk.Validate(), Error);
+}
+
 // Walks among furniture: every env starts on free floor of its own room, its goal is free floor
 // of that room within range and reachable along free A* legs, the pelvis goal is the carrot on
 // that path, and touching a wall ends the episode as a failure.

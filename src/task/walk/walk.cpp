@@ -235,10 +235,18 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
   double reward =
       Reward(walk_[i].target, root, vel, walk_[i].prev_velocity, facing, target_speed(i));
   const double w = config_.walk.style_pose_weight;
+  const double w_slide = config_.walk.foot_slide_weight;
+  double r_pose = 1.0;
   if (w > 0 && posture_) {
     const double a = std::min(1.0, view.control_dt / config_.walk.style_pose_time);
     walk_[i].pose_average += a * (view.pose->dof_pos - walk_[i].pose_average);
-    reward = (1 - w) * reward + w * StylePoseReward(i, walk_[i].pose_average);
+    r_pose = StylePoseReward(i, walk_[i].pose_average);
+  } else {
+    r_pose = reward;  // no posture term: its share stays with r_walk
+  }
+  if (w > 0 || w_slide > 0) {
+    const double r_slide = w_slide > 0 ? FootSlideReward(*view.bodies) : 0.0;
+    reward = (1 - w - w_slide) * reward + w * r_pose + w_slide * r_slide;
   }
   r.reward = static_cast<float>(reward);
   walk_[i].prev_velocity = vel;
@@ -310,6 +318,18 @@ void WalkParams::Validate() const {
   Require(style_pose_time > 0, "style_pose_time", "a positive time constant (s)");
   Require(rooms >= 0 && rooms <= 64, "walk_rooms", "a room count in [0, 64] (0: open floor)");
   Require(path_lookahead > 0, "walk_path_lookahead", "a positive distance (m)");
+  Require(foot_slide_weight >= 0 && foot_slide_weight + style_pose_weight <= 1, "foot_slide_weight",
+          "a share in [0, 1 − style_pose_weight]");
+  Require(foot_slide_scale > 0, "foot_slide_scale", "a positive scale (s²/m²)");
+  Require(foot_contact_height > 0, "foot_contact_height", "a positive height (m)");
+}
+
+double WalkSkill::FootSlideReward(const humanoid::BodyStates& b) const {
+  double sum = 0;
+  for (int foot : {humanoid::kLeftFoot, humanoid::kRightFoot})
+    if (b.pos[foot].z() < config_.walk.foot_contact_height)
+      sum += b.lin_vel[foot].head<2>().squaredNorm();
+  return std::exp(-config_.walk.foot_slide_scale * sum);
 }
 
 // The registry entry: vocabulary traits (core/skill_vocabulary.cpp), params, scene, factory.

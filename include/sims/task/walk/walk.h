@@ -90,6 +90,9 @@ class WalkSkill : public Skill {
   /// The style-posture reward of env `env_id` for averaged joint angles `mean_pose` (1 when no
   /// style clip is drawn): exp(−style_pose_scale·mean_j (q̃_j − q̄_j)²).
   double StylePoseReward(int env_id, const JointAngles& mean_pose) const;
+  /// The foot-sliding reward exp(−foot_slide_scale·Σ_f ‖v_f,xy‖²) over the feet whose origin
+  /// is below foot_contact_height (1 when none slides or no foot is down).
+  double FootSlideReward(const humanoid::BodyStates& bodies) const;
   /// Env `env_id`'s running-average joint angles q̃ (style_pose_weight > 0 only).
   const JointAngles& average_pose(int env_id) const { return walk_[env_id].pose_average; }
   /// Draws a target on free floor at a distance in [min, max] from `from`.
