@@ -58,26 +58,31 @@ scene::PenetrationStats MotionPenetration(
   return scene::MeasurePenetration(occupancy, world);
 }
 
-FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_height) {
+void FootSlidingMeter::Add(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double dt) {
+  if (a.z() > contact_height_ || b.z() > contact_height_) return;
+  const double v = (b - a).head<2>().norm() / dt;
+  total_ += v;
+  fast_ += v > 0.1;
+  ++pairs_;
+}
+
+FootSliding FootSlidingMeter::Result() const {
   FootSliding s;
-  double total = 0;
-  int fast = 0;
-  const double dt = 1.0 / record.fps;
-  for (size_t t = 1; t < record.frames.size(); ++t)
-    for (int foot : {humanoid::kLeftFoot, humanoid::kRightFoot}) {
-      const Eigen::Vector3d a = record.frames[t - 1].body_pos[foot],
-                            b = record.frames[t].body_pos[foot];
-      if (a.z() > contact_height || b.z() > contact_height) continue;
-      const double v = (b - a).head<2>().norm() / dt;
-      total += v;
-      fast += v > 0.1;
-      ++s.contact_pairs;
-    }
-  if (s.contact_pairs) {
-    s.mean_speed = total / s.contact_pairs;
-    s.sliding_ratio = static_cast<double>(fast) / s.contact_pairs;
+  s.contact_pairs = pairs_;
+  if (pairs_) {
+    s.mean_speed = total_ / pairs_;
+    s.sliding_ratio = static_cast<double>(fast_) / pairs_;
   }
   return s;
+}
+
+FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_height) {
+  FootSlidingMeter meter(contact_height);
+  const double dt = 1.0 / record.fps;
+  for (size_t t = 1; t < record.frames.size(); ++t)
+    for (int foot : {humanoid::kLeftFoot, humanoid::kRightFoot})
+      meter.Add(record.frames[t - 1].body_pos[foot], record.frames[t].body_pos[foot], dt);
+  return meter.Result();
 }
 
 Eigen::VectorXd PoseFeature(const io::RecordFrame& f) {

@@ -1,6 +1,7 @@
 #include "sims/eval/policy_eval.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 
 #include "sims/core/config.h"
@@ -221,6 +222,8 @@ nlohmann::json PolicyEvalReport::ToJson() const {
       {"mean_num_steps", mean_num_steps},
       {"time_to_success_s", time_to_success},
       {"mean_length", mean_length},
+      {"foot_sliding_m_per_s", foot_sliding},
+      {"foot_sliding_ratio", foot_sliding_ratio},
       {"control_dt", control_dt},
       {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
       {"reference_starts", reference_starts},
@@ -334,6 +337,14 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   const int record_trials = o.record_dir.empty() ? 0 : o.record_trials;
   if (record_trials > 0) std::filesystem::create_directories(o.record_dir);
   std::vector<std::unique_ptr<io::MotionRecordBuilder>> recording(n_env);
+  // Foot sliding over every trial's steps; a pair across a reset is not a move.
+  FootSlidingMeter sliding;
+  auto feet = [&](int i) {
+    const humanoid::BodyStates& b = env.bodies(i);
+    return std::array<Eigen::Vector3d, 2>{b.pos[humanoid::kLeftFoot], b.pos[humanoid::kRightFoot]};
+  };
+  std::vector<std::array<Eigen::Vector3d, 2>> feet_before(n_env);
+  for (int i = 0; i < n_env; ++i) feet_before[i] = feet(i);
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
     rep.results[trial[i]].start = setup.skill->start_label(i);
@@ -368,6 +379,12 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     o.ablation.Apply(segments, n_env, env.obs_dim(), env.observations());
     policy.Act(env.observations(), n_env, actions.data());
     env.Step(actions.data());
+    for (int i = 0; i < n_env; ++i) {
+      const std::array<Eigen::Vector3d, 2> now = feet(i);
+      if (trial[i] >= 0 && !env.dones()[i])
+        for (int k = 0; k < 2; ++k) sliding.Add(feet_before[i][k], now[k], rep.control_dt);
+      feet_before[i] = now;
+    }
     for (int i = 0; i < n_env; ++i) {
       if (trial[i] < 0) continue;
       TrialResult& t = rep.results[trial[i]];
@@ -456,6 +473,8 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.success_steps /= n;
   rep.mean_num_steps /= n;
   rep.mean_length /= n;
+  rep.foot_sliding = sliding.Result().mean_speed;
+  rep.foot_sliding_ratio = sliding.Result().sliding_ratio;
   rep.time_to_success = successes ? rep.time_to_success / successes : 0.0;
   for (const auto& t : rep.results) {
     if (t.start.empty()) continue;

@@ -6,6 +6,7 @@
 #include "sims/core/config.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
+#include "sims/eval/motion_metrics.h"
 #include "sims/io/motion_record.h"
 #include "sims/learning/sim_vec_env.h"
 #include "sims/learning/train_run.h"
@@ -120,6 +121,24 @@ TEST(PolicyEvalTest, RecordWritesTheFirstTrialsMotions) {
     EXPECT_NE(m.keyframes[0].detail.find("steps"), std::string::npos);
   }
   EXPECT_FALSE(fs::exists(o.record_dir / "trial_2.json"));
+
+  // The report's foot sliding pools every trial's steps: the same figure as the motion metric
+  // over all recorded trials (their positions are stored to 6 decimals).
+  o.record_dir = sims::testing::TempDir("eval_record_all");
+  o.record_trials = 3;
+  const PolicyEvalReport all = EvaluatePolicy(o);
+  double total = 0;
+  int pairs = 0;
+  for (int k = 0; k < 3; ++k) {
+    const FootSliding s = MeasureFootSliding(
+        io::LoadMotionRecord(o.record_dir / ("trial_" + std::to_string(k) + ".json")));
+    total += s.mean_speed * s.contact_pairs;
+    pairs += s.contact_pairs;
+  }
+  ASSERT_GT(pairs, 0);
+  EXPECT_NEAR(all.foot_sliding, total / pairs, 1e-3);
+  EXPECT_GT(all.foot_sliding, 0.0);
+  EXPECT_TRUE(all.ToJson().contains("foot_sliding_m_per_s"));
 }
 
 // The success path: a walk task whose success radius reaches past the 3–5 m evaluation

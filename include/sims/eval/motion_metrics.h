@@ -30,6 +30,22 @@ struct FootSliding {
   double sliding_ratio = 0;  ///< Share of contact pairs faster than 0.1 m/s.
   int contact_pairs = 0;     ///< Frame pairs counted.
 };
+/// Adds up FootSliding over foot positions one frame pair at a time (a live rollout).
+class FootSlidingMeter {
+ public:
+  /// Feet whose origin is above `contact_height` (m) in either frame are in the air.
+  explicit FootSlidingMeter(double contact_height = 0.08) : contact_height_(contact_height) {}
+  /// Counts one foot's move from `a` to `b` over `dt` seconds.
+  void Add(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double dt);
+  /// The figures so far.
+  FootSliding Result() const;
+
+ private:
+  double contact_height_;
+  double total_ = 0;
+  int fast_ = 0, pairs_ = 0;
+};
+
 /// Foot sliding of a recorded motion.
 FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_height = 0.08);
 

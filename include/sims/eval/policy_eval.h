@@ -112,8 +112,11 @@ struct PolicyEvalReport {
   double mean_num_steps = 1;       ///< Mean plan steps per trial.
   double time_to_success = 0;      ///< Mean seconds to first success (successful trials).
   double mean_length = 0;          ///< Mean trial length (control steps).
-  sim::ObsAblation ablation;       ///< Inputs that were withheld.
-  double reference_starts = 0;     ///< Share of trials asked to start from motion clips.
+  /// Mean horizontal foot speed while a foot is down, over all trials (eval::FootSliding).
+  double foot_sliding = 0;
+  double foot_sliding_ratio = 0;  ///< Share of those foot moves faster than 0.1 m/s.
+  sim::ObsAblation ablation;      ///< Inputs that were withheld.
+  double reference_starts = 0;    ///< Share of trials asked to start from motion clips.
   /// Per start kind (skills with start labels, e.g. get-up's seat/bed/floor/fall).
   struct StartGroup {
     int trials = 0;              ///< Trials that started this way.
