@@ -369,7 +369,7 @@ TEST(SitSkillTest, PreciseNearShareSharpensTheNearReward) {
   EXPECT_TRUE(r.success);
 
   c.object.precise_near_share = 1.5;
-  const std::string share = testing::ErrorOf([&] { c.object.Validate(); });
+  const std::string share = sims::testing::ErrorOf([&] { c.object.Validate(); });
   EXPECT_NE(share.find("precise_near_share"), std::string::npos) << share;
   EXPECT_NE(share.find("[0, 1]"), std::string::npos) << share;
   SkillConfig lie = c;
@@ -378,7 +378,7 @@ TEST(SitSkillTest, PreciseNearShareSharpensTheNearReward) {
   lie.motion.manifest = testing::SyntheticManifest({"lie"});
   lie.motion.skills = {"lie"};
   lie.object.precise_near_share = 0.6;  // lie pays half of r_near from the wide kernel
-  const std::string lie_error = testing::ErrorOf([&] { MakeSkillEnv(lie, 1); });
+  const std::string lie_error = sims::testing::ErrorOf([&] { MakeSkillEnv(lie, 1); });
   EXPECT_NE(lie_error.find("precise_near_share"), std::string::npos) << lie_error;
   EXPECT_NE(lie_error.find("0.5"), std::string::npos) << lie_error;
 }
