@@ -30,6 +30,7 @@ struct FootSliding {
   double sliding_ratio = 0;  ///< Share of contact pairs faster than 0.1 m/s.
   int contact_pairs = 0;     ///< Frame pairs counted.
 };
+
 /// Adds up FootSliding over foot positions one frame pair at a time (a live rollout).
 class FootSlidingMeter {
  public:

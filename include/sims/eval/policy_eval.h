@@ -70,7 +70,8 @@ struct TrialResult {
   int success_step = -1;         ///< First control step at which the task completed (−1: never).
   double contact_error = 0;      ///< Skill goal error at the end of the trial (m).
   double min_contact_error = 0;  ///< Smallest skill goal error during the trial (m).
-  /// At the end: the first active contact joint minus its goal, heading frame (x forward, m).
+  /// At the end: the first active contact joint minus its goal (m), in the heading frame
+  /// (x forward, y left, z up).
   Eigen::Vector3d goal_offset = Eigen::Vector3d::Zero();
   int steps_completed = 0;  ///< Plan steps passed (single-step skills: 1 on success).
   int num_steps = 1;        ///< Plan steps of the trial.

@@ -236,18 +236,14 @@ sim::TaskStepResult WalkSkill::Step(const sim::EnvView& view) {
       Reward(walk_[i].target, root, vel, walk_[i].prev_velocity, facing, target_speed(i));
   const double w = config_.walk.style_pose_weight;
   const double w_slide = config_.walk.foot_slide_weight;
-  double r_pose = 1.0;
+  double r_pose = reward;  // without style clips the posture share stays with r_walk
   if (w > 0 && posture_) {
     const double a = std::min(1.0, view.control_dt / config_.walk.style_pose_time);
     walk_[i].pose_average += a * (view.pose->dof_pos - walk_[i].pose_average);
     r_pose = StylePoseReward(i, walk_[i].pose_average);
-  } else {
-    r_pose = reward;  // no posture term: its share stays with r_walk
   }
-  if (w > 0 || w_slide > 0) {
-    const double r_slide = w_slide > 0 ? FootSlideReward(*view.bodies) : 0.0;
-    reward = (1 - w - w_slide) * reward + w * r_pose + w_slide * r_slide;
-  }
+  const double r_slide = w_slide > 0 ? FootSlideReward(*view.bodies) : 0.0;
+  reward = (1 - w - w_slide) * reward + w * r_pose + w_slide * r_slide;
   r.reward = static_cast<float>(reward);
   walk_[i].prev_velocity = vel;
   if (free_space_ && Collided(view)) {

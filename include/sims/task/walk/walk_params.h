@@ -35,8 +35,8 @@ struct WalkParams {
   /// dimensions when held_out_objects is set (evaluation).
   int rooms = 0;
   double path_lookahead = 1.0;  ///< m ahead on the A* path (the FSM's lookahead).
-  /// Share of the task reward paid for feet that do not slide: r = (1 − w)·r_walk +
-  /// w·exp(−foot_slide_scale·Σ_f ‖v_f,xy‖²) over the feet whose origin is below
+  /// Share of the task reward paid for feet that do not slide: r = (1 − w − w_pose)·r_walk +
+  /// w_pose·r_pose + w·exp(−foot_slide_scale·Σ_f ‖v_f,xy‖²) over the feet whose origin is below
   /// foot_contact_height. The walk policies shuffle (foot origin median 5.5 cm, 0.5 cm above
   /// a flat sole; 0.41 m/s of sliding on flat ground against 0.05 m/s in the demo clips) and
   /// a saturated discriminator does not tell them otherwise. 0 = off.
