@@ -473,8 +473,9 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.success_steps /= n;
   rep.mean_num_steps /= n;
   rep.mean_length /= n;
-  rep.foot_sliding = sliding.Result().mean_speed;
-  rep.foot_sliding_ratio = sliding.Result().sliding_ratio;
+  const FootSliding slid = sliding.Result();
+  rep.foot_sliding = slid.mean_speed;
+  rep.foot_sliding_ratio = slid.sliding_ratio;
   rep.time_to_success = successes ? rep.time_to_success / successes : 0.0;
   for (const auto& t : rep.results) {
     if (t.start.empty()) continue;

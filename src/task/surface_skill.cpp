@@ -12,12 +12,11 @@ namespace sims::task {
 SurfaceSkill::SurfaceSkill(const SkillConfig& config, const SkillContext& context, SurfaceTask task)
     : ObjectSkill(config, context), task_(std::move(task)) {
   SIMS_CHECK(task_.target_local && task_.anchor_local);
-  Require(
-      task_.wide_near_share + config_.object.wide_near_share + config_.object.precise_near_share <=
-          1,
-      "precise_near_share",
-      fmt::format("a share ≤ {} − wide_near_share (the {} skill's own wide near share is {})",
-                  1 - task_.wide_near_share, config_.skill, task_.wide_near_share));
+  const double near_shares =
+      task_.wide_near_share + config_.object.wide_near_share + config_.object.precise_near_share;
+  Require(near_shares <= 1, "precise_near_share",
+          fmt::format("a share ≤ {} − wide_near_share (the {} skill's own wide near share is {})",
+                      1 - task_.wide_near_share, config_.skill, task_.wide_near_share));
   lateral_.assign(context.num_envs, 0.0);
   reference_clips_.clear();
   if (context.motions) reference_clips_ = context.motions->Find(task_.clip_skill);
