@@ -266,7 +266,7 @@ TEST(GetUpSkillTest, BackplayStartsRisenAndReachesBackWithSuccess) {
   getup->SetBackplayLevel(0, 0.0);
   getup->LoadEnvState(0, saved);
   EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.75);
-  const std::vector<double> old(saved.begin(), saved.end() - 1);
+  const std::vector<double> old(saved.begin(), saved.end() - 2);
   getup->LoadEnvState(0, old);
   EXPECT_EQ(getup->backplay_level(0), 0.0);
   // Fall-state episodes leave the level alone.
@@ -284,6 +284,58 @@ TEST(GetUpSkillTest, BackplayStartsRisenAndReachesBackWithSuccess) {
   SkillConfig plain = GetUpConfig();
   auto p = MakeSkillEnv(plain, 1);
   EXPECT_TRUE(std::isnan(p.setup.skill->curriculum_level(0)));
+}
+
+// Floor clips keep a backplay level of their own: a completed floor episode raises it and
+// leaves the furniture level alone, and at floor level 0 a floor clip starts nearly risen
+// even where the furniture level is 1 (one shared level, held near 1 by the seat starts, had
+// the floor clips start lying down). Snapshots carry it; older ones read it as 0.
+TEST(GetUpSkillTest, FloorClipsKeepTheirOwnBackplayLevel) {
+  SkillConfig c = GetUpConfig();
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 1.0;
+  c.getup.backplay_end = 0.9;
+  c.getup.backplay_step = 0.5;
+  c.success_hold_steps = 2;
+  c.object.max_contact_force = 0;
+  const int n = 6;
+  auto s = MakeSkillEnv(c, n);
+  auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  ASSERT_NE(getup, nullptr);
+  double lowest = 1e9;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < n; ++i) {
+      getup->SetBackplayLevel(i, 1.0);  // furniture: the whole window
+      s.env->ResetEnv(i);
+      ASSERT_EQ(getup->start(i), GetUpSkill::kFloorClipStart);
+      EXPECT_EQ(getup->floor_backplay_level(i), 0.0);
+      lowest = std::min(lowest, s.env->bodies(i).pos[humanoid::kPelvis].z());
+    }
+  EXPECT_GT(lowest, c.getup.standing_pelvis_height - 0.15) << "level 0: nearly risen";
+  getup->SetBackplayLevel(0, 0.25);
+  const Eigen::Vector3d p = s.env->bodies(0).pos[humanoid::kPelvis];
+  s.env->SetState(0, PoseAt(Eigen::Vector3d(p.x(), p.y(), 0.89)));
+  for (int k = 0; k < c.success_hold_steps; ++k) getup->Step(ViewOf(*s.env, 0));
+  ASSERT_GE(getup->hold(0), c.success_hold_steps);
+  s.env->ResetEnv(0);
+  EXPECT_DOUBLE_EQ(getup->floor_backplay_level(0), 0.5);
+  EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.25) << "furniture level untouched";
+  // At floor level 1 the window reaches back to lying on the floor.
+  double lying = 1e9;
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < n; ++i) {
+      getup->SetBackplayLevel(i, 1.0, /*floor=*/true);
+      s.env->ResetEnv(i);
+      lying = std::min(lying, s.env->bodies(i).pos[humanoid::kPelvis].z());
+    }
+  EXPECT_LT(lying, 0.4);
+  const std::vector<double> saved = getup->SaveEnvState(0);
+  getup->SetBackplayLevel(0, 0.0, /*floor=*/true);
+  getup->LoadEnvState(0, saved);
+  EXPECT_DOUBLE_EQ(getup->floor_backplay_level(0), 0.75);
+  getup->LoadEnvState(0, std::vector<double>(saved.begin(), saved.end() - 1));
+  EXPECT_EQ(getup->floor_backplay_level(0), 0.0);
+  EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.25);
 }
 
 // A seat's height may differ from the clip's by up to kMaxClipHeightMismatch, and the clip is

@@ -208,7 +208,7 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   if (floor) {
     const int clip = floor_clips_[rng.UniformInt(static_cast<int64_t>(floor_clips_.size()))];
     const auto& c = context_.motions->clip(clip);
-    const double t = ReferenceTime(i, c.duration(), 1.0, rng);
+    const double t = ReferenceTime(i, c.duration(), 1.0, /*floor=*/true, rng);
     Eigen::Vector2d p;
     if (!ClearFloorPoint(i, kLyingReach, rng, &p)) return false;
     const Eigen::Vector2d root = context_.motions->StateAt(clip, t).pose.root_pos.head<2>();
@@ -225,30 +225,36 @@ bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
   const int clip = ChooseFurnitureClip(furniture_clips_, geometry(i), lateral, rng, &placement,
                                        bed ? config_.getup.bed_raise : kMaxClipHeightMismatch);
   if (clip < 0) return false;
-  const double t =
-      ReferenceTime(i, context_.motions->clip(clip).duration(),
-                    placement.dz > kMaxClipHeightMismatch ? kSeatedFraction : 1.0, rng);
+  const double t = ReferenceTime(i, context_.motions->clip(clip).duration(),
+                                 placement.dz > kMaxClipHeightMismatch ? kSeatedFraction : 1.0,
+                                 /*floor=*/false, rng);
   PlaceReference(i, clip, t, placement, init);
   getup_[i].start = bed ? kBedStart : kSeatStart;
   return true;
 }
 
-double GetUpSkill::ReferenceTime(int i, double duration, double max_fraction, Rng& rng) const {
+double GetUpSkill::ReferenceTime(int i, double duration, double max_fraction, bool floor,
+                                 Rng& rng) const {
   const auto& p = config_.getup;
   if (p.backplay_end <= 0)
     return rng.Uniform(0.0, std::min(p.reference_max_fraction, max_fraction) * duration);
   // Every clip, a lifted bed's too, since a risen start stands on the floor (FurnitureShare).
   const double end = p.backplay_end;
-  return rng.Uniform((1.0 - getup_[i].backplay) * end * duration, end * duration);
+  const double level = floor ? getup_[i].floor_backplay : getup_[i].backplay;
+  return rng.Uniform((1.0 - level) * end * duration, end * duration);
 }
 
 void GetUpSkill::SampleInitialState(int i, Rng& rng, sim::InitialState* init) {
   // Learns from the episode that just ended, as the spawn curriculum does (fall-state starts
-  // have no clip time and leave the level alone).
-  if (config_.getup.backplay_end > 0 && env_[i].started && env_[i].reference)
-    getup_[i].backplay =
-        NextCurriculumLevel(getup_[i].backplay, env_[i].hold >= config_.success_hold_steps,
-                            config_.getup.backplay_step);
+  // have no clip time and leave the levels alone). Floor clips keep their own level: rising
+  // from lying on the floor is far harder than from a seat, and one shared level sat near 1
+  // from the seat starts, so floor clips started lying down and never succeeded.
+  if (config_.getup.backplay_end > 0 && env_[i].started && env_[i].reference) {
+    double& level =
+        getup_[i].start == kFloorClipStart ? getup_[i].floor_backplay : getup_[i].backplay;
+    level = NextCurriculumLevel(level, env_[i].hold >= config_.success_hold_steps,
+                                config_.getup.backplay_step);
+  }
   ObjectSkill::SampleInitialState(i, rng, init);
 }
 
@@ -256,9 +262,9 @@ double GetUpSkill::curriculum_level(int i) const {
   return config_.getup.backplay_end > 0 ? getup_[i].backplay : ObjectSkill::curriculum_level(i);
 }
 
-void GetUpSkill::SetBackplayLevel(int i, double level) {
+void GetUpSkill::SetBackplayLevel(int i, double level, bool floor) {
   SIMS_CHECK(level >= 0 && level <= 1);
-  getup_[i].backplay = level;
+  (floor ? getup_[i].floor_backplay : getup_[i].backplay) = level;
 }
 
 void GetUpSkill::DefaultInit(int i, Rng& rng, sim::InitialState* init) {
@@ -372,12 +378,16 @@ void GetUpState::Serialize(StateArchive* a) {
   a->Int("phase", &phase, GetUpSkill::kFeetPhase, GetUpSkill::kRisePhase);
   a->Int("start", &start, GetUpSkill::kSeatStart, GetUpSkill::kFallStart);
   a->Reals("stand", &stand);
-  // Snapshots from before backplay existed end here: their level is 0.
-  if (!a->loading() || a->left() > 0)
-    a->Real("backplay", &backplay);
-  else
-    backplay = 0;
-  backplay = std::clamp(backplay, 0.0, 1.0);
+  // Snapshots from before backplay (or before the floor level) end early: missing levels are 0.
+  const std::pair<const char*, double*> levels[] = {{"backplay", &backplay},
+                                                    {"floor_backplay", &floor_backplay}};
+  for (const auto& [key, level] : levels) {
+    if (!a->loading() || a->left() > 0)
+      a->Real(key, level);
+    else
+      *level = 0;
+    *level = std::clamp(*level, 0.0, 1.0);
+  }
 }
 
 void GetUpSkill::SerializeTaskState(int i, StateArchive* a) { getup_[i].Serialize(a); }

@@ -74,7 +74,8 @@ struct GetUpState {
   int phase = 0;                                    ///< GetUpSkill::Phase.
   int start = 0;                                    ///< GetUpSkill::Start.
   Eigen::Vector2d stand = Eigen::Vector2d::Zero();  ///< Stand point (world xy).
-  double backplay = 0;                              ///< Backplay level in [0, 1].
+  double backplay = 0;                              ///< Furniture backplay level in [0, 1].
+  double floor_backplay = 0;                        ///< Floor-clip backplay level in [0, 1].
 
   /// Lists the fields.
   void Serialize(StateArchive* a);
@@ -95,7 +96,8 @@ class GetUpSkill : public ObjectSkill {
   /// Moves the env's backplay level after a reference episode (getup_backplay_end > 0), then
   /// starts the next episode as every object skill does.
   void SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) override;
-  /// The backplay level when backplay runs, else the object skills' spawn level or NaN.
+  /// The furniture backplay level when backplay runs, else the object skills' spawn level or
+  /// NaN.
   double curriculum_level(int env_id) const override;
   void OnReset(const sim::EnvView& view, Rng& rng) override;
   sim::TaskStepResult Step(const sim::EnvView& view) override;
@@ -115,10 +117,12 @@ class GetUpSkill : public ObjectSkill {
   Start start(int env_id) const { return static_cast<Start>(getup_[env_id].start); }
   /// Stand point of env i (world xy).
   const Eigen::Vector2d& stand_point(int env_id) const { return getup_[env_id].stand; }
-  /// Env i's backplay level in [0, 1] (getup_backplay_end).
+  /// Env i's backplay level in [0, 1] for furniture clips (getup_backplay_end).
   double backplay_level(int env_id) const { return getup_[env_id].backplay; }
-  /// Sets env i's backplay level (tests, tools).
-  void SetBackplayLevel(int env_id, double level);
+  /// Env i's backplay level in [0, 1] for floor clips.
+  double floor_backplay_level(int env_id) const { return getup_[env_id].floor_backplay; }
+  /// Sets env i's furniture (or floor-clip) backplay level (tests, tools).
+  void SetBackplayLevel(int env_id, double level, bool floor = false);
   /// Whether env i's episode started on the floor (a fall state or a floor clip).
   bool floor_start(int env_id) const { return getup_[env_id].start >= kFloorClipStart; }
   /// The precomputed fall states.
@@ -156,9 +160,11 @@ class GetUpSkill : public ObjectSkill {
 
  private:
   void StartGetUp(int env_id, const humanoid::BodyStates& b);
-  // A reference start time (s) in a clip of `duration` s for env i: the backplay window when
-  // backplay runs, else the first reference_max_fraction but at most `max_fraction`.
-  double ReferenceTime(int env_id, double duration, double max_fraction, Rng& rng) const;
+  // A reference start time (s) in a clip of `duration` s for env i: the backplay window of the
+  // floor or furniture level when backplay runs, else the first reference_max_fraction but at
+  // most `max_fraction`.
+  double ReferenceTime(int env_id, double duration, double max_fraction, bool floor,
+                       Rng& rng) const;
   void SetGetUpGoals(int env_id, const humanoid::BodyStates& b, double* feet_sq, double* feet_max);
   // A free floor point for a body reaching `reach` m from its root, tried near env i's object
   // (the spawn ring); false when none of the draws was clear.

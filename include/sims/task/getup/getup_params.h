@@ -34,9 +34,11 @@ struct GetUpParams {
   /// learning from a demonstration's end backwards): when > 0, reference starts draw their clip
   /// time from [(1 − b)·e, e] instead, e this fraction of the clip (nearly risen) and b the
   /// env's backplay level in [0, 1], which starts at 0 and moves with the env's reference
-  /// episodes (backplay_step). At b = 1 the window runs from seated or lying to e. Lifted bed
-  /// starts use the same window: a risen state stands on the floor beside the bed, the bed's
-  /// lift fading out as the pelvis rises (FurnitureShare). 0 = off (evaluation turns it off).
+  /// episodes (backplay_step); floor clips keep a level of their own, since rising from the
+  /// floor is learnt far later than rising from a seat. At b = 1 the window runs from seated or
+  /// lying to e. Lifted bed starts use the same window: a risen state stands on the floor beside
+  /// the bed, the bed's lift fading out as the pelvis rises (FurnitureShare). 0 = off (evaluation
+  /// turns it off).
   double backplay_end = 0;
   /// Backplay level change after a reference-start episode: + this when it succeeded, − half
   /// of it when it did not, so the level settles where a third of the starts succeed (as the
