@@ -50,7 +50,8 @@ double MeasureSgemmGflops(int n, int repeats) {
 
 nlohmann::json RunLearnerBenchmark(const std::filesystem::path& config_path, int iterations) {
   auto config = LoadConfig<TrainConfig>(config_path);
-  auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
+  auto setup =
+      task::CreateSkill(config.skill, config.env.num_envs, config.env.seed, nullptr, &config.env);
   ApplyStyleModel(config.skill, &setup);
   auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, config.env, setup.skill);
   std::shared_ptr<const DemoSource> demo;
@@ -197,7 +198,8 @@ nlohmann::json RunTrainBenchmark(const TrainBenchOptions& o) {
   if (!o.references) return result;
 
   // References measured in this run: raw mj_step on the skill's own scene, and sgemm.
-  auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
+  auto setup =
+      task::CreateSkill(config.skill, config.env.num_envs, config.env.seed, nullptr, &config.env);
   sim::BatchedEnv ref_env(setup.context.humanoid, config.env, setup.skill);
   const double raw = RawStepsPerSecondFrom(ref_env, ThreadCount(), 30);
   const double sgemm = MeasureSgemmGflops();

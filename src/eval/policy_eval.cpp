@@ -299,7 +299,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     ec.episode_length = static_cast<int>(plan.steps.size()) * 300;
   }
 
-  task::SkillSetup setup = task::CreateSkill(sc, n_env, o.seed, scene);
+  task::SkillSetup setup = task::CreateSkill(sc, n_env, o.seed, scene, &ec);
   learning::ApplyStyleModel(sc, &setup);
   if (scene) dynamic_cast<task::UnifiedSkill&>(*setup.skill).SetPlan(plan.steps);
   auto hook = std::make_shared<RecordingHook>(setup.skill, n_env);

@@ -217,7 +217,8 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
 
   // One scene for all ranks (it follows the run seed); environment streams follow the global
   // env id, rank × num_envs + i, as in one process with every rank's environments.
-  auto setup = task::CreateSkill(config.skill, config.env.num_envs, config.env.seed);
+  auto setup =
+      task::CreateSkill(config.skill, config.env.num_envs, config.env.seed, nullptr, &config.env);
   ApplyStyleModel(config.skill, &setup);
   sim::EnvConfig env_config = config.env;
   env_config.seed += static_cast<uint64_t>(rank) * static_cast<uint64_t>(config.env.num_envs);

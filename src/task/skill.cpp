@@ -271,7 +271,8 @@ SkillInfo BuiltinSkillInfo(const std::string& name) {
 }
 
 SkillSetup CreateSkill(const SkillConfig& config, int num_envs, uint64_t seed,
-                       std::shared_ptr<const scene::Scene> scene_override) {
+                       std::shared_ptr<const scene::Scene> scene_override,
+                       const sim::EnvConfig* env) {
   ValidateConfig(config, "skill config");
   const SkillInfo& info = FindSkill(config.skill);
   SkillSetup setup;
@@ -294,6 +295,11 @@ SkillSetup CreateSkill(const SkillConfig& config, int num_envs, uint64_t seed,
     opt.mirror = config.motion.mirror;
     opt.skills = config.motion.skills;
     opt.emotions = config.motion.emotions;
+    const sim::EnvConfig env_config = env ? *env : sim::EnvConfig{};
+    opt.control_dt = ctx.humanoid->model()->opt.timestep * env_config.substeps;
+    opt.amp_steps = env_config.amp_history;
+    opt.root_height_obs = env_config.root_height_obs;
+    opt.local_root_obs = env_config.local_root_obs;
     ctx.motions = std::make_shared<const motion::MotionLibrary>(
         motion::MotionLibrary::Load(manifest, ctx.humanoid, opt));
     ctx.styles = std::make_shared<const StyleTable>(StyleTable::FromClipNames(*ctx.motions));

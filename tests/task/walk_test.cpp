@@ -387,3 +387,44 @@ TEST(WalkRoomsTest, SnapshotRestoresPaths) {
 
 }  // namespace
 }  // namespace sims::task
+
+namespace sims::task {
+namespace {
+
+// The motion library follows the environment the skill runs in: with 60 Hz control, a 3-step
+// AMP history and no root height, a reference start's history is spaced by 1/60 s and the
+// demonstrations have the env's width and features (with the library's defaults they would
+// be 1/30 s apart, 10 steps long and carry a root height the env zeroes).
+TEST(WalkSkillTest, MotionLibraryFollowsTheEnvironmentsAmpFeatures) {
+  SkillConfig c;
+  c.skill = "walk";
+  c.motion.manifest = testing::SyntheticManifest({"walk"});
+  c.motion.skills = {"walk"};
+  c.reference_init_prob = 1.0;
+  sim::EnvConfig ec;
+  ec.num_envs = 2;
+  ec.substeps = 2;
+  ec.amp_history = 3;
+  ec.root_height_obs = false;
+  const SkillSetup setup = CreateSkill(c, ec.num_envs, 1, nullptr, &ec);
+  const motion::MotionLibrary& lib = *setup.context.motions;
+  EXPECT_NEAR(lib.options().control_dt, 1.0 / 60.0, 1e-12);
+  EXPECT_EQ(lib.options().amp_steps, 3);
+  EXPECT_FALSE(lib.options().root_height_obs);
+  EXPECT_EQ(lib.options().local_root_obs, ec.local_root_obs);
+  const motion::ReferenceState r = lib.StateAt(0, 1.0);
+  ASSERT_EQ(r.history.size(), 2u);
+  const motion::ReferenceState later = lib.StateAt(0, 1.0 + 1.0 / 60.0);
+  EXPECT_TRUE(later.history[0].root_pos.isApprox(r.pose.root_pos, 1e-9));
+  std::vector<float> window(3 * humanoid::kAmpObsStepDim, 1.0f);
+  humanoid::MjDataPtr scratch = humanoid::MakeData(setup.context.humanoid->model());
+  lib.AmpWindow(0, 1.0, scratch.get(), window.data());
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(window[k * humanoid::kAmpObsStepDim], 0.0f) << k;
+  // Without an environment the defaults are EnvConfig's.
+  const SkillSetup plain = CreateSkill(c, 2, 1);
+  EXPECT_NEAR(plain.context.motions->options().control_dt, 1.0 / 30.0, 1e-12);
+  EXPECT_EQ(plain.context.motions->options().amp_steps, sim::EnvConfig{}.amp_history);
+}
+
+}  // namespace
+}  // namespace sims::task

@@ -301,8 +301,12 @@ struct SkillSetup {
 
 /// Builds the skill's scene, compiles the MuJoCo model, casts the height grid, loads the
 /// motion library (if a manifest is set) and creates the skill for `num_envs` environments.
-/// `scene` overrides the skill's own training scene when given.
+/// `scene` overrides the skill's own training scene when given. `env`, when given, is the
+/// environment the skill will run in: the library's AMP features (history spacing, steps, root
+/// observations) follow it, so demonstrations and reference-start histories match what the
+/// environment computes; without it they follow EnvConfig's defaults.
 SkillSetup CreateSkill(const SkillConfig& config, int num_envs, uint64_t seed,
-                       std::shared_ptr<const scene::Scene> scene = nullptr);
+                       std::shared_ptr<const scene::Scene> scene = nullptr,
+                       const sim::EnvConfig* env = nullptr);
 
 }  // namespace sims::task
