@@ -14,7 +14,6 @@
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
 #include "sims/io/subprocess.h"
-#include "sims/learning/motion_demo.h"
 #include "sims/learning/sim_vec_env.h"
 #include "sims/learning/text_styles.h"
 #include "sims/learning/train_run.h"
@@ -27,7 +26,7 @@ using learning::DemoSource;
 using learning::FreeLoopbackPort;
 using learning::IterationStats;
 using learning::IterationTiming;
-using learning::MotionDemoSource;
+using learning::MakeTrainingDemos;
 using learning::RunTraining;
 using learning::SimVecEnv;
 using learning::TrainConfig;
@@ -54,13 +53,8 @@ nlohmann::json RunLearnerBenchmark(const std::filesystem::path& config_path, int
       task::CreateSkill(config.skill, config.env.num_envs, config.env.seed, nullptr, &config.env);
   ApplyStyleModel(config.skill, &setup);
   auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, config.env, setup.skill);
-  std::shared_ptr<const DemoSource> demo;
-  if (config.learner.amp.enabled && setup.context.motions)
-    demo = std::make_shared<MotionDemoSource>(
-        setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr,
-        config.env.amp_history, 1, config.skill.balance_emotions);
-  else
-    config.learner.amp.enabled = false;
+  const std::shared_ptr<const DemoSource> demo = MakeTrainingDemos(config, setup);
+  if (!demo) config.learner.amp.enabled = false;
   Trainer trainer(std::make_shared<SimVecEnv>(env), demo, config.learner);
   trainer.RunIteration();  // warm-up: allocator, normaliser start-up
   double gflop = 0, update_s = 0, env_rate = 0, train_rate = 0;

@@ -173,6 +173,14 @@ PolicyConfigs ReadPolicyConfigs(const Policy& policy, const std::string& source)
   return c;
 }
 
+std::shared_ptr<const DemoSource> MakeTrainingDemos(const TrainConfig& config,
+                                                    const task::SkillSetup& setup) {
+  if (!config.learner.amp.enabled || !setup.context.motions) return nullptr;
+  return std::make_shared<MotionDemoSource>(
+      setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr,
+      config.env.amp_history, 1, config.skill.balance_emotions);
+}
+
 int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   const auto& out = options.out_dir;
   const auto config_path = out / "config.json";
@@ -224,15 +232,10 @@ int64_t RunTraining(TrainConfig config, const TrainOptions& options) {
   env_config.seed += static_cast<uint64_t>(rank) * static_cast<uint64_t>(config.env.num_envs);
   auto env = std::make_shared<sim::BatchedEnv>(setup.context.humanoid, env_config, setup.skill);
   auto vec = std::make_shared<SimVecEnv>(env);
-  std::shared_ptr<const DemoSource> demo;
-  if (config.learner.amp.enabled) {
-    if (!setup.context.motions)
-      ThrowInputError(config_path.string(), "skill.motion.manifest",
-                      "a motion manifest when learner.amp.enabled is true", "none");
-    demo = std::make_shared<MotionDemoSource>(
-        setup.context.motions, config.learner.amp.conditional ? setup.context.styles : nullptr,
-        config.env.amp_history, 1, config.skill.balance_emotions);
-  }
+  std::shared_ptr<const DemoSource> demo = MakeTrainingDemos(config, setup);
+  if (config.learner.amp.enabled && !demo)
+    ThrowInputError(config_path.string(), "skill.motion.manifest",
+                    "a motion manifest when learner.amp.enabled is true", "none");
   Trainer trainer(vec, demo, config.learner, options.comm, options.check_every);
   if (writer) {
     if (options.resume) {

@@ -72,6 +72,12 @@ struct PolicyConfigs {
 /// Reads a policy's stored configs; throws sims::Error naming `source` when it has none.
 PolicyConfigs ReadPolicyConfigs(const Policy& policy, const std::string& source);
 
+/// The AMP demonstrations of a run: the skill's clips in windows of env.amp_history steps,
+/// style-labelled when the discriminator is conditional, drawn per emotion as the skill's
+/// episodes are. Null when AMP is off or the skill has no motion library.
+std::shared_ptr<const DemoSource> MakeTrainingDemos(const TrainConfig& config,
+                                                    const task::SkillSetup& setup);
+
 /// Runs (or resumes) training; returns the final iteration count.
 int64_t RunTraining(TrainConfig config, const TrainOptions& options);
 
