@@ -362,6 +362,49 @@ TEST(WalkRoomsTest, StartsGoalsAndPathsStayInTheEnvsRoom) {
   EXPECT_FALSE(r.success);
 }
 
+// Furniture starts (walk_furniture_start_share): the character stands in its room with free
+// floor around the pelvis, furniture straight ahead within walk_furniture_start_max, touching
+// nothing; evaluation tells them from free-floor starts.
+TEST(WalkRoomsTest, FurnitureStartsStandFacingFurniture) {
+  SkillConfig c;
+  c.walk.rooms = 2;
+  c.walk.furniture_start_share = 1.0;
+  const int n = 12;
+  auto s = testing::MakeSkillEnv(c, n);
+  auto* walk = dynamic_cast<WalkSkill*>(s.setup.skill.get());
+  ASSERT_NE(walk, nullptr);
+  const scene::SceneHeightGrid& heights = *s.setup.context.height_grid;
+  const auto floor_at = [&](const Eigen::Vector2d& q) { return heights.Height(q.x(), q.y()); };
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < n; ++i) {
+      SCOPED_TRACE(i);
+      ASSERT_EQ(walk->start_label(i), "furniture");
+      const humanoid::BodyStates& b = s.env->bodies(i);
+      const Eigen::Vector2d p = b.pos[humanoid::kPelvis].head<2>();
+      EXPECT_TRUE(s.setup.context.scene->rooms[walk->room(i)].Contains(p));
+      EXPECT_LE(floor_at(p), 0.05);
+      const double yaw = humanoid::HeadingAngle(b.rot[humanoid::kPelvis]);
+      // Furniture ahead: along some heading within the start's ±0.35 rad jitter.
+      bool ahead = false;
+      for (double a = -0.4; a <= 0.4 && !ahead; a += 0.05)
+        for (double r = 0.1; r <= c.walk.furniture_start_max + 0.02 && !ahead; r += 0.02)
+          ahead = floor_at(p + r * Eigen::Vector2d(std::cos(yaw + a), std::sin(yaw + a))) > 0.05;
+      EXPECT_TRUE(ahead);
+      EXPECT_FALSE(WalkSkill::Collided(testing::ViewOf(*s.env, i))) << "standing clear";
+      s.env->ResetEnv(i);
+    }
+  SkillConfig free = c;
+  free.walk.furniture_start_share = 0.0;
+  auto f = testing::MakeSkillEnv(free, 2);
+  EXPECT_EQ(f.setup.skill->start_label(0), "free");
+  SkillConfig open = SkillConfig{};
+  auto o = testing::MakeSkillEnv(open, 1);
+  EXPECT_EQ(o.setup.skill->start_label(0), "");
+  free.walk.furniture_start_min = 0.6;
+  free.walk.furniture_start_max = 0.5;
+  EXPECT_THROW(free.walk.Validate(), Error);
+}
+
 // The path and goal travel in a snapshot: a restored env continues identically.
 TEST(WalkRoomsTest, SnapshotRestoresPaths) {
   SkillConfig c;

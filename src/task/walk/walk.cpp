@@ -31,6 +31,8 @@ constexpr double kClearance = 0.3;
 // Draws of a free point in a room, and of a reachable goal, before taking the last one.
 constexpr int kRoomDraws = 64;
 constexpr int kGoalDraws = 32;
+// Floor heights up to this count as free floor around a furniture start (m).
+constexpr double kFloorClear = 0.05;
 }  // namespace
 
 WalkSkill::WalkSkill(const SkillConfig& config, const SkillContext& context)
@@ -61,8 +63,67 @@ WalkSkill::WalkSkill(const SkillConfig& config, const SkillContext& context)
       Eigen::Vector2d lo = r.floor_polygon.front(), hi = lo;
       for (const auto& q : r.floor_polygon) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
       room_boxes_.emplace_back(lo, hi);
+      room_sides_.push_back(FurnitureSides(*context.scene, r.id));
     }
   }
+}
+
+std::vector<WalkSkill::FurnitureSide> WalkSkill::FurnitureSides(const scene::Scene& scene,
+                                                                const std::string& room) {
+  std::vector<FurnitureSide> sides;
+  for (const scene::Object& o : scene.objects) {
+    if (o.room != room || !o.is_static) continue;
+    const scene::Aabb b = o.LocalBounds();
+    if (b.empty()) continue;
+    const Eigen::Vector3d c = 0.5 * (b.min + b.max), h = 0.5 * (b.max - b.min);
+    for (int axis = 0; axis < 2; ++axis)
+      for (double sign : {-1.0, 1.0}) {
+        Eigen::Vector3d n_O = Eigen::Vector3d::Zero(), mid_O = c, along_O = Eigen::Vector3d::Zero();
+        n_O[axis] = sign;
+        mid_O[axis] += sign * h[axis];
+        along_O[1 - axis] = 1.0;
+        FurnitureSide side;
+        side.p_WM = (o.X_WO * mid_O).head<2>();
+        side.n_W = (o.X_WO.linear() * n_O).head<2>().normalized();
+        side.t_W = (o.X_WO.linear() * along_O).head<2>().normalized();
+        side.half_width = h[1 - axis];
+        sides.push_back(side);
+      }
+  }
+  return sides;
+}
+
+bool WalkSkill::FurnitureStart(int k, Rng& rng, Eigen::Vector2d* p_WP, double* yaw) const {
+  const std::vector<FurnitureSide>& sides = room_sides_[k];
+  if (sides.empty()) return false;
+  const auto& walk = config_.walk;
+  for (int draw = 0; draw < kRoomDraws; ++draw) {
+    const FurnitureSide& s = sides[rng.UniformInt(static_cast<int64_t>(sides.size()))];
+    const double along = rng.Uniform(-1.0, 1.0) * std::max(s.half_width - 0.15, 0.0);
+    const double off = rng.Uniform(walk.furniture_start_min, walk.furniture_start_max);
+    const Eigen::Vector2d p = s.p_WM + along * s.t_W + off * s.n_W;
+    // Standing room: floor around the pelvis (a foot's reach) inside the room, no other piece
+    // or wall in it (the side itself is at least furniture_start_min away).
+    const auto& [lo, hi] = room_boxes_[k];
+    if ((p.array() < lo.array() + kClearance).any() || (p.array() > hi.array() - kClearance).any())
+      continue;
+    bool clear = true;
+    for (double a = 0; a < 2 * M_PI && clear; a += M_PI / 4)
+      for (double r : {0.0, 0.12, 0.2}) {
+        const Eigen::Vector2d q = p + r * Eigen::Vector2d(std::cos(a), std::sin(a));
+        if (context_.height_grid->Height(q.x(), q.y()) > kFloorClear) clear = false;
+      }
+    if (!clear) continue;
+    *p_WP = p;
+    *yaw = std::atan2(-s.n_W.y(), -s.n_W.x()) + rng.Uniform(-0.35, 0.35);
+    return true;
+  }
+  return false;
+}
+
+std::string WalkSkill::start_label(int i) const {
+  if (!free_space_) return "";
+  return walk_[i].furniture_start ? "furniture" : "free";
 }
 
 int WalkSkill::room(int env_id) const {
@@ -110,6 +171,20 @@ void WalkSkill::FollowPath(int i, const Eigen::Vector2d& root) {
 }
 
 void WalkSkill::SampleInitialState(int i, Rng& rng, sim::InitialState* init) {
+  Eigen::Vector2d p;
+  double yaw = 0;
+  if (free_space_ && config_.walk.furniture_start_share > 0 &&
+      rng.Bernoulli(config_.walk.furniture_start_share) && FurnitureStart(room(i), rng, &p, &yaw)) {
+    // Standing still, as a finished sit-up, reach or get-up leaves the character: no walking
+    // clip state (one would stride into the furniture).
+    init->pose.root_pos.x() = p.x();
+    init->pose.root_pos.y() = p.y();
+    init->pose.root_rot = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+    state_[i].style = context_.motions && !ReferenceClips().empty() ? DrawReferenceStyle(rng) : -1;
+    walk_[i].furniture_start = true;
+    return;
+  }
+  walk_[i].furniture_start = false;
   if (free_space_) {
     const Eigen::Vector2d p = FreePointInRoom(room(i), rng);
     init->pose.root_pos.x() = p.x();
@@ -318,6 +393,10 @@ void WalkParams::Validate() const {
           "a share in [0, 1 − style_pose_weight]");
   Require(foot_slide_scale > 0, "foot_slide_scale", "a positive scale (s²/m²)");
   Require(foot_contact_height > 0, "foot_contact_height", "a positive height (m)");
+  Require(furniture_start_share >= 0 && furniture_start_share <= 1, "walk_furniture_start_share",
+          "a share in [0, 1]");
+  Require(furniture_start_min > 0 && furniture_start_max >= furniture_start_min,
+          "walk_furniture_start_max", "distances with 0 < walk_furniture_start_min ≤ max (m)");
 }
 
 double WalkSkill::FootSlideReward(const humanoid::BodyStates& b) const {

@@ -42,6 +42,9 @@ struct WalkState {
   scene::PathFollower path{Eigen::Vector2d::Zero(), {}};
   Eigen::Vector2d prev_velocity = Eigen::Vector2d::Zero();  ///< Root velocity one step ago (xy).
   int hold = 0;                                             ///< Consecutive steps success has held.
+  /// The episode started in front of furniture (walk_furniture_start_share; reporting only,
+  /// not in snapshots).
+  bool furniture_start = false;
   /// Later targets (after a success) come from this per-env stream, seeded at reset, so that the
   /// hook needs no access to the env's RNG inside Step().
   Rng target_rng{0};
@@ -62,6 +65,9 @@ class WalkSkill : public Skill {
   WalkSkill(const SkillConfig& config, const SkillContext& context);
 
   std::string name() const override { return "walk"; }
+  /// Among furniture: "furniture" for a start in front of a piece of furniture, else "free"
+  /// (evaluation reports success per start); "" on open floor.
+  std::string start_label(int env_id) const override;
   void OnReset(const sim::EnvView& view, Rng& rng) override;
   sim::TaskStepResult Step(const sim::EnvView& view) override;
   /// Walks to target.point (xy), or to the object's centre when only an object is given.
@@ -118,6 +124,19 @@ class WalkSkill : public Skill {
   // Among furniture: the free-space grid and each room's floor box (min, max corners).
   std::unique_ptr<const scene::FreeSpaceGrid> free_space_;
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> room_boxes_;
+  // Among furniture: the sides of each room's furniture, where furniture starts stand.
+  struct FurnitureSide {
+    Eigen::Vector2d p_WM;  // middle of the side (world xy)
+    Eigen::Vector2d n_W;   // outward normal
+    Eigen::Vector2d t_W;   // along the side
+    double half_width = 0;
+  };
+  static std::vector<FurnitureSide> FurnitureSides(const scene::Scene& scene,
+                                                   const std::string& room);
+  // A furniture start in room k: pelvis xy and heading (facing the side); false when no draw
+  // found standing room.
+  bool FurnitureStart(int k, Rng& rng, Eigen::Vector2d* p_WP, double* yaw) const;
+  std::vector<std::vector<FurnitureSide>> room_sides_;
   // Whether the style-posture term is on (style_pose_weight > 0 and a motion library).
   bool posture_ = false;
   // Mean joint angles of every library clip (the style clips' postures), when
