@@ -428,12 +428,6 @@ TEST(WalkRoomsTest, SnapshotRestoresPaths) {
                            sizeof(float) * 4 * s.env->obs_dim()));
 }
 
-}  // namespace
-}  // namespace sims::task
-
-namespace sims::task {
-namespace {
-
 // The motion library follows the environment the skill runs in: with 60 Hz control, a 3-step
 // AMP history and no root height, a reference start's history is spaced by 1/60 s and the
 // demonstrations have the env's width and features (with the library's defaults they would

@@ -180,7 +180,7 @@ void WalkSkill::SampleInitialState(int i, Rng& rng, sim::InitialState* init) {
     init->pose.root_pos.x() = p.x();
     init->pose.root_pos.y() = p.y();
     init->pose.root_rot = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
-    state_[i].style = context_.motions && !ReferenceClips().empty() ? DrawReferenceStyle(rng) : -1;
+    state_[i].style = DrawReferenceStyle(rng);  // -1 without clips, as the default init
     walk_[i].furniture_start = true;
     return;
   }
