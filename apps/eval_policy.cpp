@@ -44,6 +44,13 @@ int main(int argc, char** argv) {
                  "the animated character (trial_K.glb) to this folder");
   app.add_option("--record-trials", o.record_trials, "trials --record keeps (default 4)")
       ->check(CLI::NonNegativeNumber);
+  bool training_objects = false;
+  app.add_flag("--training-objects", training_objects,
+               "objects with the training dimensions instead of held-out ones (e.g. to record "
+               "--end-states for training)");
+  app.add_option("--end-states", o.end_states,
+                 "write where each trial that did not fall ended (sit, lie: relative to the "
+                 "seat or mattress) as hand-off states for get-up training");
   app.add_flag("--json", json, "print the report as JSON");
   app.add_option("--out", out, "also write the JSON report to this file");
   sims::AddAppFlags(&app, &flags);
@@ -54,6 +61,7 @@ int main(int argc, char** argv) {
     o.checkpoint = checkpoint;
     o.config = config;
     o.partnet_root = partnet;
+    o.held_out = !training_objects;
     if (!o.record_dir.empty() && o.record_trials == 0) o.record_trials = 4;
     const auto report = sims::eval::EvaluatePolicy(o);
     auto j = report.ToJson();

@@ -19,6 +19,8 @@
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/loaders.h"
+#include "sims/task/handoff.h"
+#include "sims/task/object_skill.h"
 #include "sims/task/unified/unified.h"
 
 namespace sims::eval {
@@ -345,6 +347,19 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   };
   std::vector<std::array<Eigen::Vector3d, 2>> feet_before(n_env);
   for (int i = 0; i < n_env; ++i) feet_before[i] = feet(i);
+  // --end-states: each env's last state before a reset and the object it was on (a reset may
+  // pick another object).
+  const auto* object_skill = dynamic_cast<const task::ObjectSkill*>(setup.skill.get());
+  const bool keep_ends = !o.end_states.empty() && object_skill;
+  std::vector<humanoid::HumanoidPose> last_pose(n_env);
+  std::vector<const task::ObjectGeometry*> last_object(n_env, nullptr);
+  std::vector<task::HandoffState> end_states;
+  auto keep_last = [&](int i) {
+    last_pose[i] = env.pose(i);
+    last_object[i] = &object_skill->geometry(i);
+  };
+  if (keep_ends)
+    for (int i = 0; i < n_env; ++i) keep_last(i);
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
     rep.results[trial[i]].start = setup.skill->start_label(i);
@@ -394,6 +409,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       // Success counts once the task reports itself accomplished (held as long as required).
       if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
       if (!env.dones()[i] && recording[i]) recording[i]->AddFrame(env.pose(i));
+      if (!env.dones()[i] && keep_ends) keep_last(i);
       if (!env.dones()[i]) {
         if (o.style_eval) {
           const humanoid::HumanoidPose& p = env.pose(i);
@@ -431,6 +447,12 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
         t.success = !t.fell && !t.force_end && t.success_step >= 0;
         t.steps_completed = t.success ? 1 : 0;
       }
+      if (keep_ends && !t.fell && !t.force_end) {
+        const std::string part = object_skill->support_part(*last_object[i]);
+        if (!part.empty())
+          end_states.push_back(
+              task::MakeHandoffState(sc.skill, part, *last_object[i], last_pose[i], t.success));
+      }
       if (recording[i]) {
         recording[i]->EndKeyframe(t.success,
                                   fmt::format("{}; {} steps; goal error {:.3f} m (least {:.3f} m)",
@@ -451,6 +473,15 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     }
   }
 
+  if (!o.end_states.empty()) {
+    if (end_states.empty())
+      ThrowInputError(o.checkpoint.string(), "extra.skill.skill",
+                      "a policy of a skill that rests the character on a furniture part (e.g. "
+                      "sit, lie) with at least one trial that did not fall, for --end-states",
+                      "'" + sc.skill + "' with no such trial");
+    task::SaveHandoffStates(end_states, o.end_states);
+    spdlog::info("wrote {} end states to {}", end_states.size(), o.end_states.string());
+  }
   int successes = 0;
   rep.mean_num_steps = 0;
   for (const auto& t : rep.results) {

@@ -13,6 +13,7 @@
 #include "sims/learning/trainer.h"
 #include "sims/motion/motion_library.h"
 #include "sims/motion/synthetic.h"
+#include "sims/task/handoff.h"
 
 namespace sims::eval {
 namespace {
@@ -139,6 +140,35 @@ TEST(PolicyEvalTest, RecordWritesTheFirstTrialsMotions) {
   EXPECT_NEAR(all.foot_sliding, total / pairs, 1e-3);
   EXPECT_GT(all.foot_sliding, 0.0);
   EXPECT_TRUE(all.ToJson().contains("foot_sliding_m_per_s"));
+}
+
+// --end-states keeps where each sit trial that did not fall ended, relative to its seat.
+TEST(PolicyEvalTest, EndStatesAreKeptRelativeToTheSeat) {
+  task::SkillConfig sc;
+  sc.skill = "sit";
+  sc.object.num_objects = 2;
+  const fs::path policy = TinyPolicy(sc, 12, "eval_end_states");
+  PolicyEvalOptions o = TwoEnvOptions(policy, 4);
+  const std::string plain = EvaluatePolicy(o).ToJson().dump();
+  o.end_states = sims::testing::TempDir("eval_end_states_out") / "ends.json";
+  const PolicyEvalReport r = EvaluatePolicy(o);
+  EXPECT_EQ(r.ToJson().dump(), plain) << "recording changes nothing";
+  const std::vector<task::HandoffState> ends = task::LoadHandoffStates(o.end_states);
+  int kept = 0;
+  for (const TrialResult& t : r.results) kept += !t.fell && !t.force_end;
+  ASSERT_GT(kept, 0);
+  ASSERT_EQ(static_cast<int>(ends.size()), kept);
+  for (const task::HandoffState& e : ends) {
+    EXPECT_EQ(e.skill, "sit");
+    EXPECT_EQ(e.part, std::string(task::kSeatPart));
+    // A 12-step trial ends where it started: standing 1-5 m from the object, on the floor.
+    const double d = (e.pose.root_pos.head<2>() - e.part_O.center().head<2>()).norm();
+    EXPECT_GT(d, 0.3);
+    EXPECT_LT(d, 6.0);
+    EXPECT_GT(e.pose.root_pos.z(), 0.5);
+  }
+  o.checkpoint = TinyPolicy(WalkConfig(), 12, "eval_end_states_walk");
+  ExpectError([&] { EvaluatePolicy(o); }, {"--end-states", "walk"});
 }
 
 // The success path: a walk task whose success radius reaches past the 3–5 m evaluation

@@ -6,6 +6,7 @@
 
 #include "sims/core/parallel.h"
 #include "sims/scene/contact_targets.h"
+#include "sims/task/handoff.h"
 #include "task/task_test_util.h"
 
 namespace sims::task {
@@ -607,6 +608,69 @@ TEST(GetUpSkillTest, RisenSeatStartsSucceedByHoldingStill) {
     }
   }
   for (int i = 0; i < n; ++i) EXPECT_EQ(completed_at[i], c.success_hold_steps) << "env " << i;
+}
+
+// Hand-off starts (getup_handoff_states): a recorded state lands on the env's own object at
+// its place relative to the seat's front edge; states that fit no object leave the clips.
+TEST(GetUpSkillTest, HandoffStartsRestOnTheEnvsObject) {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {"chair"};
+  c.object.num_objects = 3;
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
+  const int n = 6;
+  // The same config and seed give the same objects: record one standing state per chair,
+  // 0.35 m in front of its seat's front edge, facing away from it.
+  const Eigen::Vector3d p_AP(0.35, 0.0, 0.0);
+  std::vector<HandoffState> states, beds;
+  {
+    auto plain = MakeSkillEnv(c, n);
+    auto* getup = dynamic_cast<GetUpSkill*>(plain.setup.skill.get());
+    for (const ObjectGeometry& g : getup->objects()) {
+      const Eigen::Vector3d a = HandoffAnchor(std::string(kSeatPart), g.part_local(kSeatPart));
+      const Eigen::Vector3d p_W = g.ToWorld(
+          Eigen::Vector3d(a.x() + p_AP.x(), a.y() + p_AP.y(), humanoid::kDefaultRootHeight));
+      states.push_back(
+          MakeHandoffState("sit", std::string(kSeatPart), g, PoseAt(p_W, g.yaw), true));
+    }
+    ObjectGeometry bed;
+    ObjectPart mattress;
+    mattress.name = std::string(kMattressPart);
+    mattress.local.min = {-1, -0.7, 0.3};
+    mattress.local.max = {1, 0.7, 0.5};
+    bed.parts.push_back(mattress);
+    beds.push_back(MakeHandoffState("lie", mattress.name, bed, PoseAt({0, 0, 0.6}), true));
+  }
+  const auto dir = sims::testing::TempDir("getup_handoff");
+  SaveHandoffStates(states, dir / "chairs.json");
+  SaveHandoffStates(beds, dir / "beds.json");
+
+  c.getup.handoff_share = 1.0;
+  c.getup.handoff_states = {(dir / "chairs.json").string()};
+  auto s = MakeSkillEnv(c, n);
+  auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  ASSERT_EQ(getup->handoff_states().size(), states.size());
+  for (int i = 0; i < n; ++i) {
+    ASSERT_EQ(getup->start(i), GetUpSkill::kHandoffStart) << "env " << i;
+    EXPECT_EQ(getup->start_label(i), "handoff");
+    EXPECT_FALSE(getup->reference_start(i));
+    const ObjectGeometry& g = getup->geometry(i);
+    const Eigen::Vector3d rel = g.X_WO.inverse() * s.env->pose(i).root_pos -
+                                HandoffAnchor(std::string(kSeatPart), g.part_local(kSeatPart));
+    EXPECT_NEAR(rel.x(), p_AP.x(), 1e-4) << "env " << i;
+    EXPECT_NEAR(rel.y(), p_AP.y(), 1e-4) << "env " << i;
+    // Standing on the floor, raised only where this chair's seat is higher than the source's.
+    EXPECT_GE(s.env->pose(i).root_pos.z(), humanoid::kDefaultRootHeight - 1e-4);
+    EXPECT_LE(s.env->pose(i).root_pos.z(), humanoid::kDefaultRootHeight + 0.05 + 1e-4);
+  }
+
+  c.getup.handoff_states = {(dir / "beds.json").string()};
+  auto fallback = MakeSkillEnv(c, n);
+  auto* clips = dynamic_cast<GetUpSkill*>(fallback.setup.skill.get());
+  for (int i = 0; i < n; ++i) EXPECT_EQ(clips->start(i), GetUpSkill::kSeatStart) << "env " << i;
+
+  c.getup.handoff_states.clear();
+  EXPECT_THROW(ValidateConfig(c, "getup config"), Error);
 }
 
 }  // namespace

@@ -60,6 +60,10 @@ struct PolicyEvalOptions {
   /// trial_<k>.glb (the scene and the animated character), to watch what a policy does.
   std::filesystem::path record_dir;
   int record_trials = 0;  ///< How many trials --record keeps (from trial 0).
+  /// When set, the state each trial of an object skill with a support part (sit, lie) ends in
+  /// (the last step before the reset; falls and force-ended trials left out) is written here
+  /// as hand-off states (task/handoff.h), relative to the trial's object part.
+  std::filesystem::path end_states;
 };
 
 /// One trial.

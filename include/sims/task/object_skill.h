@@ -185,6 +185,9 @@ class ObjectSkill : public Skill {
   double pre_contact_time(int clip) const;
   /// Net contact force on the humanoid (N) after the last physics step of `view`.
   static double ContactForce(const sim::EnvView& view);
+  /// The part of object g the skill rests the character on (a seat, a mattress; "" = none):
+  /// what an end state of this skill is kept relative to (handoff.h).
+  virtual std::string support_part(const ObjectGeometry& /*g*/) const { return ""; }
 
  protected:
   /// Whether scene object `g` suits the skill.

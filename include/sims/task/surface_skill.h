@@ -56,6 +56,10 @@ class SurfaceSkill : public ObjectSkill {
   double UpdateGoals(int env_id, const humanoid::BodyStates& b, double* success_distance);
   /// Env i's lateral choice (m along the seat; lie: the side, ±1).
   double lateral(int env_id) const { return lateral_[env_id]; }
+  /// task.pelvis_part, or the fallback part on objects without it.
+  std::string support_part(const ObjectGeometry& g) const override {
+    return g.part(task_.pelvis_part) ? task_.pelvis_part : task_.fallback_pelvis_part;
+  }
 
  protected:
   bool Accepts(const ObjectGeometry& g) const override {

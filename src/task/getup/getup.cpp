@@ -9,6 +9,7 @@
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
 #include "sims/humanoid/features.h"
+#include "sims/task/handoff.h"
 #include "sims/task/sit/sit.h"
 
 namespace sims::task {
@@ -25,6 +26,8 @@ constexpr double kLyingReach = 1.0;
 constexpr double kFloorMargin = 0.3;
 // The first quarter of a get-up clip is still seated or lying.
 constexpr double kSeatedFraction = 0.25;
+// Hand-off states drawn before a reference start falls back to a clip.
+constexpr int kHandoffDraws = 16;
 
 // The fall states for `count`, generated once per process (every env of every skill instance
 // shares them read-only).
@@ -100,6 +103,9 @@ void GetUpParams::Validate() const {
   Require(backplay_end >= 0 && backplay_end <= 1, "getup_backplay_end",
           "a fraction in [0, 1] (0 = no backplay)");
   Require(backplay_step > 0 && backplay_step <= 1, "getup_backplay_step", "a step in (0, 1]");
+  Require(handoff_share >= 0 && handoff_share <= 1, "getup_handoff_share", "a share in [0, 1]");
+  Require(handoff_share == 0 || !handoff_states.empty(), "getup_handoff_states",
+          "hand-off state files (eval_policy --end-states) when getup_handoff_share > 0");
 }
 
 GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
@@ -119,6 +125,8 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
     }
   }
   fall_states_ = CachedFallStates(config.getup.fall_states);
+  for (const std::string& file : config.getup.handoff_states)
+    for (HandoffState& s : LoadHandoffStates(file)) handoff_.push_back(std::move(s));
   // The feet goal's height: foot origins of the standing default pose.
   humanoid::MjDataPtr scratch = humanoid::MakeData(context.humanoid->model());
   humanoid::BodyStates b;
@@ -146,6 +154,8 @@ std::string GetUpSkill::start_label(int env_id) const {
       return "bed";
     case kFloorClipStart:
       return "floor";
+    case kHandoffStart:
+      return "handoff";
     default:
       return "fall";
   }
@@ -202,7 +212,25 @@ bool GetUpSkill::ClearFloorPoint(int i, double reach, Rng& rng, Eigen::Vector2d*
   return false;
 }
 
+bool GetUpSkill::HandoffInit(int i, Rng& rng, sim::InitialState* init) {
+  // A few draws: states from another seat height or depth do not fit this object.
+  for (int attempt = 0; attempt < kHandoffDraws; ++attempt) {
+    const HandoffState& s = handoff_[rng.UniformInt(static_cast<int64_t>(handoff_.size()))];
+    const std::optional<humanoid::HumanoidPose> pose = PlaceHandoffState(s, geometry(i));
+    if (!pose) continue;
+    init->pose = *pose;
+    init->history.clear();
+    init->reference = false;
+    getup_[i].start = kHandoffStart;
+    SetStyle(i, DrawReferenceStyle(rng));
+    return true;
+  }
+  return false;
+}
+
 bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
+  if (!handoff_.empty() && rng.Bernoulli(config_.getup.handoff_share) && HandoffInit(i, rng, init))
+    return true;
   const bool floor = !floor_clips_.empty() &&
                      (furniture_clips_.empty() || rng.Bernoulli(config_.getup.floor_clip_share));
   if (floor) {
@@ -376,7 +404,7 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
 
 void GetUpState::Serialize(StateArchive* a) {
   a->Int("phase", &phase, GetUpSkill::kFeetPhase, GetUpSkill::kRisePhase);
-  a->Int("start", &start, GetUpSkill::kSeatStart, GetUpSkill::kFallStart);
+  a->Int("start", &start, GetUpSkill::kSeatStart, GetUpSkill::kHandoffStart);
   a->Reals("stand", &stand);
   // Snapshots from before backplay (or before the floor level) end early: missing levels are 0.
   const std::pair<const char*, double*> levels[] = {{"backplay", &backplay},

@@ -6,6 +6,9 @@
 //     on the env's seat or bed by their stored furniture parameters; floor clips (clips with no
 //     furniture parameters: supine or prone on the floor) at a free floor point clear of the
 //     furniture, a getup_floor_clip_share of the reference starts, with the fall states' grace.
+//   hand-off: a getup_handoff_share of the reference starts from getup_handoff_states, where
+//     the sit and lie policies ended their episodes (task/handoff.h), placed on the env's
+//     object when one fits (else a clip start); stories start get-ups there.
 //   default: one of getup_fall_states precomputed fall states (ASE getup: a random root
 //     orientation and random actions U[−0.5, 0.5] held for 300 physics steps at 120 Hz, i.e.
 //     ASE's 150 steps at 60 Hz), placed where every body lies on free floor, with
@@ -50,6 +53,7 @@
 #include <string>
 #include <vector>
 
+#include "sims/task/handoff.h"
 #include "sims/task/object_skill.h"
 
 namespace sims::task {
@@ -87,7 +91,8 @@ class GetUpSkill : public ObjectSkill {
   /// Phases of an episode.
   enum Phase : int { kFeetPhase = 0, kRisePhase = 1 };
   /// How env i's episode started (start_label()).
-  enum Start : int { kSeatStart = 0, kBedStart, kFloorClipStart, kFallStart };
+  /// (kHandoffStart last: snapshots store the number.)
+  enum Start : int { kSeatStart = 0, kBedStart, kFloorClipStart, kFallStart, kHandoffStart };
 
   /// Per-env state for context.num_envs envs; the fall states come from a per-process cache.
   GetUpSkill(const SkillConfig& config, const SkillContext& context);
@@ -108,7 +113,8 @@ class GetUpSkill : public ObjectSkill {
   uint32_t contact_body_mask() const override;
   /// Already standing clear: a get-up instruction has nothing to do.
   bool Accomplished(const sim::EnvView& view) const override { return StandingClear(view); }
-  /// "seat", "bed", "floor" (a floor clip) or "fall" (a fall state).
+  /// "seat", "bed", "floor" (a floor clip), "fall" (a fall state) or "handoff" (a hand-off
+  /// state).
   std::string start_label(int env_id) const override;
 
   /// Current phase of env i.
@@ -124,7 +130,11 @@ class GetUpSkill : public ObjectSkill {
   /// Sets env i's furniture (or floor-clip) backplay level (tests, tools).
   void SetBackplayLevel(int env_id, double level, bool floor = false);
   /// Whether env i's episode started on the floor (a fall state or a floor clip).
-  bool floor_start(int env_id) const { return getup_[env_id].start >= kFloorClipStart; }
+  bool floor_start(int env_id) const {
+    return getup_[env_id].start == kFloorClipStart || getup_[env_id].start == kFallStart;
+  }
+  /// The hand-off states (getup_handoff_states; empty without).
+  const std::vector<HandoffState>& handoff_states() const { return handoff_; }
   /// The precomputed fall states.
   const std::vector<FallState>& fall_states() const { return *fall_states_; }
   /// Standing upright (pelvis and head heights of `params`, pelvis and torso up axes).
@@ -160,6 +170,8 @@ class GetUpSkill : public ObjectSkill {
 
  private:
   void StartGetUp(int env_id, const humanoid::BodyStates& b);
+  // A start from a hand-off state that fits env i's object; false when none of the draws did.
+  bool HandoffInit(int env_id, Rng& rng, sim::InitialState* init);
   // A reference start time (s) in a clip of `duration` s for env i: the backplay window of the
   // floor or furniture level when backplay runs, else the first reference_max_fraction but at
   // most `max_fraction`.
@@ -173,6 +185,7 @@ class GetUpSkill : public ObjectSkill {
   double foot_height_ = 0.0;
   double head_height_ = 0.0;
   std::shared_ptr<const std::vector<FallState>> fall_states_;
+  std::vector<HandoffState> handoff_;
   std::vector<int> furniture_clips_, floor_clips_;  // library indices
   std::vector<GetUpState> getup_;                   // per env
 };
