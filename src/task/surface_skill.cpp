@@ -27,6 +27,14 @@ SurfaceSkill::SurfaceSkill(const SkillConfig& config, const SkillContext& contex
     extra_parts_.push_back(task_.extra_parts ? task_.extra_parts(g, config_) : std::vector<int>{});
 }
 
+std::string SurfaceSkill::support_part(const ObjectGeometry& g) const {
+  if (g.part(task_.pelvis_part)) return task_.pelvis_part;
+  const ObjectPart* f =
+      task_.fallback_pelvis_part.empty() ? nullptr : g.part(task_.fallback_pelvis_part);
+  if (!f || f->local.max.y() - f->local.min.y() < task_.fallback_min_width) return "";
+  return task_.fallback_pelvis_part;
+}
+
 double SurfaceSkill::ClipContactTime(int clip) const {
   // The clips end on the furniture: contact begins once the pelvis is within the success
   // distance (with margin) of where it ends.

@@ -105,5 +105,40 @@ TEST(LieSkillTest, GoalsRewardAndThreshold) {
   EXPECT_NEAR(lie->goal_error(0), std::max(dp.norm(), dh.norm()), 1e-9);
 }
 
+// Stories lie on sofas: a sofa's seat is the surface (long axis y, approached from the front),
+// the head goes to either arm; armchairs are too narrow to lie on.
+TEST(LieSkillTest, SofasAreLainOnAlongTheSeat) {
+  SkillConfig c = LieConfig();
+  c.reference_init_prob = 0;
+  c.object.object_categories = {"sofa", "armchair"};
+  c.object.num_objects = 4;
+  auto s = MakeSkillEnv(c, 4);
+  auto* lie = dynamic_cast<LieSkill*>(s.setup.skill.get());
+  ASSERT_EQ(lie->objects().size(), 2u) << "the two sofas, not the armchairs";
+  for (int i = 0; i < 4; ++i) {
+    const ObjectGeometry& g = lie->geometry(i);
+    ASSERT_EQ(g.part(kMattressPart), nullptr);
+    EXPECT_EQ(lie->support_part(g), std::string(kSeatPart));
+    const scene::Aabb& seat = g.part_local(kSeatPart);
+    EXPECT_GT(seat.max.y() - seat.min.y(), 1.2);
+    const Eigen::Vector3d target_O = g.X_WO.inverse() * lie->target(i);
+    EXPECT_TRUE(target_O.head<2>().isApprox(seat.center().head<2>(), 1e-9));
+    EXPECT_NEAR(target_O.z(), seat.max.z() + 0.11, 1e-9);
+    // The far anchor stands in front of the sofa.
+    const Eigen::Vector3d anchor_O =
+        g.X_WO.inverse() * Eigen::Vector3d(lie->anchor(i).x(), lie->anchor(i).y(), 0.0);
+    EXPECT_NEAR(anchor_O.x(), g.local.max.x() + kStandDistance, 1e-9);
+    EXPECT_NEAR(anchor_O.y(), seat.center().y(), 1e-9);
+    EXPECT_EQ(lie->goal_mask(i), (1u << humanoid::kCjPelvis) | (1u << humanoid::kCjHead));
+  }
+  c.object.object_categories = {"armchair"};
+  try {
+    MakeSkillEnv(c, 1);
+    FAIL() << "armchairs accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bed or sofa"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace sims::task

@@ -27,6 +27,9 @@ struct SurfaceTask {
   /// The part used on objects without pelvis_part ("" = none; sit: a bed's mattress, whose
   /// foot end at +x is then the seat's front edge).
   std::string fallback_pelvis_part;
+  /// The fallback part only where it is at least this wide (its y extent, m; lie: a sofa's
+  /// seat, not a chair's).
+  double fallback_min_width = 0.0;
   /// The episode's lateral choice on object g (e.g. SeatLateral; null = always 0).
   double (*lateral)(const ObjectGeometry& g, Rng& rng) = nullptr;
   /// The pelvis target in the object frame for that choice.
@@ -57,15 +60,10 @@ class SurfaceSkill : public ObjectSkill {
   /// Env i's lateral choice (m along the seat; lie: the side, ±1).
   double lateral(int env_id) const { return lateral_[env_id]; }
   /// task.pelvis_part, or the fallback part on objects without it.
-  std::string support_part(const ObjectGeometry& g) const override {
-    return g.part(task_.pelvis_part) ? task_.pelvis_part : task_.fallback_pelvis_part;
-  }
+  std::string support_part(const ObjectGeometry& g) const override;
 
  protected:
-  bool Accepts(const ObjectGeometry& g) const override {
-    return g.part(task_.pelvis_part) != nullptr ||
-           (!task_.fallback_pelvis_part.empty() && g.part(task_.fallback_pelvis_part) != nullptr);
-  }
+  bool Accepts(const ObjectGeometry& g) const override { return !support_part(g).empty(); }
   bool observes_object() const override { return true; }
   double ClipContactTime(int clip) const override;
   void SampleTask(int env_id, Rng& rng) override;

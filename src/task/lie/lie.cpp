@@ -7,28 +7,48 @@ namespace sims::task {
 namespace {
 // Height of the lying pelvis above the mattress top in the lie clips (m).
 constexpr double kLyingPelvisHeight = 0.11;
+// A seat this wide (m) is a sofa to lie on: a default sofa's seat is 1.68 m between its arms,
+// an armchair's 0.55 m.
+constexpr double kSofaMinWidth = 1.2;
+
+// The surface lain on: a bed's mattress, else a sofa's seat.
+const scene::Aabb& LyingSurface(const ObjectGeometry& g) {
+  const ObjectPart* mattress = g.part(kMattressPart);
+  return mattress ? mattress->local : g.part_local(kSeatPart);
+}
 
 SurfaceTask LieTask() {
   SurfaceTask t;
   t.clip_skill = "lie";
-  t.what = "bed (an object with a 'mattress' part)";
+  t.what = "bed or sofa (a 'mattress' part, or a 'seat surface' at least 1.2 m wide)";
   t.pelvis_part = kMattressPart;
+  // Stories say "lies down on the sofa" (31 of 88 lie keyframes over eval_story's 90 stories
+  // named a sofa, and scenes without a bed could not run lie at all).
+  t.fallback_pelvis_part = kSeatPart;
+  t.fallback_min_width = kSofaMinWidth;
   // The side of the bed the character lies down from (the clips come in mirrored pairs).
   t.lateral = [](const ObjectGeometry&, Rng& rng) { return rng.Bernoulli(0.5) ? 1.0 : -1.0; };
-  // The mattress centre, the lying pelvis height (the lie clips: 0.11 m) above its top.
+  // The surface centre, the lying pelvis height (the lie clips: 0.11 m) above its top.
   t.target_local = [](const ObjectGeometry& g, double, const SkillConfig&) {
-    const scene::Aabb& mattress = g.part_local(kMattressPart);
-    const Eigen::Vector3d mid = mattress.center();
-    return Eigen::Vector3d(mid.x(), mid.y(), mattress.max.z() + kLyingPelvisHeight);
+    const scene::Aabb& surface = LyingSurface(g);
+    const Eigen::Vector3d mid = surface.center();
+    return Eigen::Vector3d(mid.x(), mid.y(), surface.max.z() + kLyingPelvisHeight);
   };
-  // A stand point beside the bed's long side (a procedural bed's long axis is its x).
+  // A stand point beside the bed's long side (a procedural bed's long axis is its x), or in
+  // front of the sofa (its long axis is y, its front +x).
   t.anchor_local = [](const ObjectGeometry& g, double side) {
+    if (!g.part(kMattressPart))
+      return Eigen::Vector3d(g.local.max.x() + kStandDistance, LyingSurface(g).center().y(), 0.0);
     const double y = side > 0 ? g.local.max.y() + kStandDistance : g.local.min.y() - kStandDistance;
     return Eigen::Vector3d(g.part_local(kMattressPart).center().x(), y, 0.0);
   };
   t.extra_joint = humanoid::kCjHead;
+  // The head on a pillow, on a sofa on either arm.
   t.extra_parts = [](const ObjectGeometry& g, const SkillConfig&) {
-    return g.part_indices("pillow");
+    if (g.part(kMattressPart)) return g.part_indices("pillow");
+    std::vector<int> arms = g.part_indices("left arm");
+    for (int k : g.part_indices("right arm")) arms.push_back(k);
+    return arms;
   };
   t.extra_in_success = true;  // lying means the head is on the pillow too
   // Seated on the bed's edge (where the lie clips sit first, and where the sit-initialised
@@ -45,6 +65,7 @@ LieSkill::LieSkill(const SkillConfig& config, const SkillContext& context)
 SkillInfo LieSkillInfo() {
   SkillInfo info = BuiltinSkillInfo("lie");
   info.params = ConfigToJson(ObjectParams{});
+  // Beds unless the config's object_categories say otherwise (e.g. ["bed", "sofa"]).
   info.build_scene = [](const SkillConfig& c, Rng& rng) {
     return BuildTrainingGround(c, rng, {"bed"});
   };
