@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <mutex>
 
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
+#include "sims/core/paths.h"
 #include "sims/humanoid/features.h"
 #include "sims/task/handoff.h"
 #include "sims/task/sit/sit.h"
@@ -125,8 +127,15 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
     }
   }
   fall_states_ = CachedFallStates(config.getup.fall_states);
-  for (const std::string& file : config.getup.handoff_states)
-    for (HandoffState& s : LoadHandoffStates(file)) handoff_.push_back(std::move(s));
+  // Only resets draw them (a story's get-up begins where the story is), and a relative path
+  // that is not under the working directory is the project's (as motion manifests).
+  if (config.getup.handoff_share > 0) {
+    for (const std::string& file : config.getup.handoff_states) {
+      std::filesystem::path path = file;
+      if (path.is_relative() && !std::filesystem::exists(path)) path = ProjectRoot() / path;
+      for (HandoffState& s : LoadHandoffStates(path)) handoff_.push_back(std::move(s));
+    }
+  }
   // The feet goal's height: foot origins of the standing default pose.
   humanoid::MjDataPtr scratch = humanoid::MakeData(context.humanoid->model());
   humanoid::BodyStates b;

@@ -133,7 +133,7 @@ class GetUpSkill : public ObjectSkill {
   bool floor_start(int env_id) const {
     return getup_[env_id].start == kFloorClipStart || getup_[env_id].start == kFallStart;
   }
-  /// The hand-off states (getup_handoff_states; empty without).
+  /// The hand-off states (getup_handoff_states; loaded only when getup_handoff_share > 0).
   const std::vector<HandoffState>& handoff_states() const { return handoff_; }
   /// The precomputed fall states.
   const std::vector<FallState>& fall_states() const { return *fall_states_; }

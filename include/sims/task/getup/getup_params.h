@@ -48,7 +48,8 @@ struct GetUpParams {
   /// object skills' spawn curriculum).
   double backplay_step = 0.05;
   /// Hand-off state files (task/handoff.h: where the sit and lie policies leave the character,
-  /// recorded by `eval_policy --end-states`), relative to the working directory; [] = none.
+  /// recorded by `eval_policy --end-states`); a relative path missing from the working
+  /// directory is taken from the project root; [] = none.
   std::vector<std::string> handoff_states;
   /// Share of the reference starts taken from the hand-off states, placed on the env's object
   /// when one fits it (else a clip start as usual); labelled "handoff".
