@@ -42,6 +42,17 @@ std::shared_ptr<const std::vector<FallState>> CachedFallStates(int count) {
     slot = std::make_shared<const std::vector<FallState>>(GenerateFallStates(count, kFallSeed));
   return slot;
 }
+// The hand-off states of `path`, read once per process (each story of a batch, and every skill
+// instance, would otherwise parse the same files again).
+std::shared_ptr<const std::vector<HandoffState>> CachedHandoffStates(
+    const std::filesystem::path& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const std::vector<HandoffState>>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[std::filesystem::absolute(path).lexically_normal().string()];
+  if (!slot) slot = std::make_shared<const std::vector<HandoffState>>(LoadHandoffStates(path));
+  return slot;
+}
 }  // namespace
 
 std::vector<FallState> GenerateFallStates(int count, uint64_t seed) {
@@ -133,7 +144,8 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
     for (const std::string& file : config.getup.handoff_states) {
       std::filesystem::path path = file;
       if (path.is_relative() && !std::filesystem::exists(path)) path = ProjectRoot() / path;
-      for (HandoffState& s : LoadHandoffStates(path)) handoff_.push_back(std::move(s));
+      const auto states = CachedHandoffStates(path);
+      handoff_.insert(handoff_.end(), states->begin(), states->end());
     }
   }
   // The feet goal's height: foot origins of the standing default pose.
