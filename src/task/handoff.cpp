@@ -14,16 +14,10 @@ constexpr int kVersion = 1;
 // Margin around the target part's footprint the placed pelvis may reach (m).
 constexpr double kFootprintMargin = 0.05;
 
-// Rotates and translates a pose by the rigid transform X (yaw-only in practice).
-humanoid::HumanoidPose Transform(const Eigen::Isometry3d& X, const humanoid::HumanoidPose& p) {
-  humanoid::HumanoidPose q = p;
-  const Eigen::Matrix3d R = X.linear();
-  q.root_pos = X * p.root_pos;
-  q.root_rot = Eigen::Quaterniond(R) * p.root_rot;
-  q.root_rot.normalize();
-  q.root_lin_vel = R * p.root_lin_vel;
-  q.root_ang_vel = R * p.root_ang_vel;
-  return q;
+// The placement taking object-frame coordinates of g to the world (furniture is yaw-only).
+ClipPlacement ObjectToWorld(const ObjectGeometry& g, const Eigen::Vector3d& shift_O) {
+  const Eigen::Vector3d t = g.X_WO.translation();
+  return ClipPlacement::Align(t.head<2>(), g.yaw, -shift_O.head<2>(), 0.0, t.z() + shift_O.z());
 }
 
 bool OverFootprint(const Eigen::Vector3d& p, const scene::Aabb& box, double margin) {
@@ -69,7 +63,10 @@ HandoffState MakeHandoffState(const std::string& skill, const std::string& part,
   s.skill = skill;
   s.part = part;
   s.part_O = g.part_local(part);
-  s.pose = Transform(g.X_WO.inverse(), pose_W);
+  // The inverse placement: the object's frame onto the origin.
+  const Eigen::Vector3d t = g.X_WO.translation();
+  s.pose =
+      ClipPlacement::Align(Eigen::Vector2d::Zero(), 0.0, t.head<2>(), g.yaw, -t.z()).Apply(pose_W);
   s.success = success;
   return s;
 }
@@ -86,12 +83,10 @@ std::optional<humanoid::HumanoidPose> PlaceHandoffState(const HandoffState& s,
   if (std::abs(dz) > max_height_diff || std::abs(depth_diff) > max_depth_diff) return std::nullopt;
   Eigen::Vector3d shift = HandoffAnchor(s.part, to) - HandoffAnchor(s.part, s.part_O);
   shift.z() = std::max(dz, 0.0);
-  humanoid::HumanoidPose p_O = s.pose;
-  p_O.root_pos += shift;
   if (OverFootprint(s.pose.root_pos, s.part_O, 0.0) &&
-      !OverFootprint(p_O.root_pos, to, kFootprintMargin))
+      !OverFootprint(s.pose.root_pos + shift, to, kFootprintMargin))
     return std::nullopt;
-  return Transform(g.X_WO, p_O);
+  return ObjectToWorld(g, shift).Apply(s.pose);
 }
 
 void SaveHandoffStates(const std::vector<HandoffState>& states, const std::filesystem::path& path) {

@@ -31,27 +31,28 @@ constexpr double kSeatedFraction = 0.25;
 // Hand-off states drawn before a reference start falls back to a clip.
 constexpr int kHandoffDraws = 16;
 
-// The fall states for `count`, generated once per process (every env of every skill instance
-// shares them read-only).
-std::shared_ptr<const std::vector<FallState>> CachedFallStates(int count) {
+// The value `make()` gives for `key`, computed once per process and then shared read-only
+// (every env of every skill instance, each story of a batch). Keys are per value type.
+template <class Value, class Key, class Make>
+std::shared_ptr<const Value> Cached(const Key& key, Make make) {
   static std::mutex mutex;
-  static std::map<int, std::shared_ptr<const std::vector<FallState>>> cache;
+  static std::map<Key, std::shared_ptr<const Value>> cache;
   std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = cache[count];
-  if (!slot)
-    slot = std::make_shared<const std::vector<FallState>>(GenerateFallStates(count, kFallSeed));
+  auto& slot = cache[key];
+  if (!slot) slot = std::make_shared<const Value>(make());
   return slot;
 }
-// The hand-off states of `path`, read once per process (each story of a batch, and every skill
-// instance, would otherwise parse the same files again).
+
+std::shared_ptr<const std::vector<FallState>> CachedFallStates(int count) {
+  return Cached<std::vector<FallState>>(count,
+                                        [&] { return GenerateFallStates(count, kFallSeed); });
+}
+
 std::shared_ptr<const std::vector<HandoffState>> CachedHandoffStates(
     const std::filesystem::path& path) {
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const std::vector<HandoffState>>> cache;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = cache[std::filesystem::absolute(path).lexically_normal().string()];
-  if (!slot) slot = std::make_shared<const std::vector<HandoffState>>(LoadHandoffStates(path));
-  return slot;
+  return Cached<std::vector<HandoffState>>(
+      std::filesystem::absolute(path).lexically_normal().string(),
+      [&] { return LoadHandoffStates(path); });
 }
 }  // namespace
 
