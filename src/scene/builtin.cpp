@@ -328,11 +328,45 @@ Object MakeFurniture(const std::string& category, const FurnitureParams& params,
   return b.Finish();
 }
 
-FurnitureParams RandomFurnitureParams(const std::string& category, Rng& rng, bool held_out) {
+namespace {
+
+constexpr double kHeldOutBands[2][2] = {{0.76, 0.86}, {1.14, 1.24}};
+
+// One uniform draw over [min, max] minus the held-out bands: the draw is laid out over the
+// allowed length and walked along the pieces, so the stream uses one number per factor
+// whatever the range (the default range, which meets no band, is exactly U[0.9, 1.1]).
+double TrainingFactor(const TrainingScale& t, Rng& rng) {
+  double pieces[3][2];
+  int n = 0;
+  double lo = t.min, length = 0;
+  for (const auto& band : kHeldOutBands) {
+    if (band[0] > lo) {
+      pieces[n][0] = lo;
+      pieces[n][1] = std::min(band[0], t.max);
+      if (pieces[n][1] > pieces[n][0]) length += pieces[n][1] - pieces[n][0], ++n;
+    }
+    lo = std::max(lo, band[1]);
+    if (lo >= t.max) break;
+  }
+  if (lo < t.max) pieces[n][0] = lo, pieces[n][1] = t.max, length += t.max - lo, ++n;
+  if (n == 1) return rng.Uniform(pieces[0][0], pieces[0][1]);
+  double u = rng.Uniform() * length;
+  for (int k = 0; k < n; ++k) {
+    const double w = pieces[k][1] - pieces[k][0];
+    if (u < w || k == n - 1) return pieces[k][0] + std::min(u, w);
+    u -= w;
+  }
+  return 1.0;  // unreachable: the loop returns at its last piece
+}
+
+}  // namespace
+
+FurnitureParams RandomFurnitureParams(const std::string& category, Rng& rng, bool held_out,
+                                      const TrainingScale& training) {
   FurnitureParams p = DefaultFurnitureParams(category);
   // One factor per primary dimension, from disjoint training / held-out ranges.
   auto factor = [&]() {
-    if (!held_out) return rng.Uniform(0.9, 1.1);
+    if (!held_out) return TrainingFactor(training, rng);
     return rng.Bernoulli(0.5) ? rng.Uniform(0.76, 0.86) : rng.Uniform(1.14, 1.24);
   };
   const double back_above_seat = p.height - p.seat_height;
@@ -364,8 +398,9 @@ FurnitureParams RandomFurnitureParams(const std::string& category, Rng& rng, boo
 }
 
 Object RandomFurniture(const std::string& category, Rng& rng, bool held_out,
-                       const std::string& instance) {
-  return MakeFurniture(category, RandomFurnitureParams(category, rng, held_out), instance);
+                       const std::string& instance, const TrainingScale& training) {
+  return MakeFurniture(category, RandomFurnitureParams(category, rng, held_out, training),
+                       instance);
 }
 
 void PlaceObject(Object* object, double x, double y, double yaw) {

@@ -41,6 +41,10 @@ bool FreeAt(const scene::SceneHeightGrid& grid, const Eigen::Vector2d& p, double
 
 void ObjectParams::Validate() const {
   Require(num_objects >= 0, "num_objects", "a non-negative count");
+  Require(training_scale_min > 0 && training_scale_min <= 0.9, "training_scale_min",
+          "a factor in (0, 0.9]");
+  Require(training_scale_max >= 1.1 && training_scale_max <= 2, "training_scale_max",
+          "a factor in [1.1, 2]");
   Require(spawn_max_distance >= spawn_min_distance && spawn_min_distance >= 0, "spawn_max_distance",
           "a distance ≥ spawn_min_distance ≥ 0");
   Require(spawn_arc_deg > 0 && spawn_arc_deg <= 360, "spawn_arc_deg", "an angle in (0, 360]");
@@ -69,8 +73,9 @@ scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
   const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   for (int i = 0; i < n; ++i) {
     const std::string& cat = cats[i % cats.size()];
-    scene::Object o = scene::RandomFurniture(cat, rng, config.object.held_out_objects,
-                                             cat + "_" + std::to_string(i));
+    scene::Object o = scene::RandomFurniture(
+        cat, rng, config.object.held_out_objects, cat + "_" + std::to_string(i),
+        {config.object.training_scale_min, config.object.training_scale_max});
     const double yaw = rng.Uniform(-M_PI, M_PI);
     scene::PlaceObject(&o, (i % side) * kTrainingGroundSpacing, (i / side) * kTrainingGroundSpacing,
                        yaw);

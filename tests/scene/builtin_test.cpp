@@ -86,6 +86,31 @@ TEST(BuiltinTest, HeldOutDimensionsAreDisjointFromTraining) {
   EXPECT_TRUE(x.Bounds().max.isApprox(y.Bounds().max));
 }
 
+TEST(BuiltinTest, WideTrainingScaleSkipsTheHeldOutBands) {
+  const TrainingScale wide{0.7, 1.3};
+  const FurnitureParams nominal = DefaultFurnitureParams("bed");
+  Rng rng(3);
+  int below = 0, inside = 0, above = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const double d = RandomFurnitureParams("bed", rng, false, wide).depth / nominal.depth;
+    ASSERT_TRUE(d >= 0.7 - 1e-12 && d <= 1.3 + 1e-12) << d;
+    ASSERT_FALSE((d > 0.76 && d < 0.86) || (d > 1.14 && d < 1.24)) << "held-out factor " << d;
+    (d < 0.76 ? below : d > 1.24 ? above : inside) += 1;
+  }
+  // Uniform over the 0.40 of allowed length: 0.06 below, 0.28 in the middle, 0.06 above.
+  EXPECT_NEAR(below / 2000.0, 0.15, 0.03);
+  EXPECT_NEAR(above / 2000.0, 0.15, 0.03);
+  EXPECT_NEAR(inside / 2000.0, 0.70, 0.04);
+  // The default range meets no band: the same draws as before the option existed.
+  Rng a(9), b(9);
+  EXPECT_EQ(RandomFurnitureParams("bed", a, false).depth,
+            RandomFurnitureParams("bed", b, false, TrainingScale{0.9, 1.1}).depth);
+  Rng c(9), u(9);
+  u.Uniform();  // the width factor; depth is the second draw
+  EXPECT_NEAR(RandomFurnitureParams("bed", c, false).depth / nominal.depth, 0.9 + 0.2 * u.Uniform(),
+              1e-12);
+}
+
 TEST(BuiltinTest, BadCategoryAndParamsAreClearErrors) {
   try {
     MakeFurniture("throne", FurnitureParams{});

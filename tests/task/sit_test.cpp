@@ -383,6 +383,30 @@ TEST(SitSkillTest, PreciseNearShareSharpensTheNearReward) {
   EXPECT_NE(lie_error.find("0.5"), std::string::npos) << lie_error;
 }
 
+// training_scale_min/max widen the training ground's dimensions around the held-out bands:
+// chair seats (nominal 0.45 m) reach below 0.76× and above 1.24× but never into the bands.
+TEST(SitSkillTest, WideTrainingScaleKeepsOutOfTheHeldOutBands) {
+  SkillConfig c = SitConfig();
+  c.object.object_categories = {"chair"};
+  c.object.num_objects = 60;
+  c.object.training_scale_min = 0.7;
+  c.object.training_scale_max = 1.3;
+  Rng rng(4);
+  const scene::Scene ground = BuildTrainingGround(c, rng, {});
+  int outside = 0;
+  for (const scene::Object& o : ground.objects) {
+    const double f = o.FindPart("seat surface")->mesh.Bounds().max.z() / 0.45;
+    EXPECT_FALSE((f > 0.76 + 1e-9 && f < 0.86 - 1e-9) || (f > 1.14 + 1e-9 && f < 1.24 - 1e-9))
+        << "held-out seat factor " << f;
+    outside += f < 0.76 || f > 1.24;
+  }
+  EXPECT_GT(outside, 5);  // 30 % of the allowed length lies beyond the bands
+  c.object.training_scale_max = 1.05;
+  const std::string error = sims::testing::ErrorOf([&] { c.object.Validate(); });
+  EXPECT_NE(error.find("training_scale_max"), std::string::npos) << error;
+  EXPECT_NE(error.find("[1.1, 2]"), std::string::npos) << error;
+}
+
 TEST(SitSkillTest, SuccessHeldTruncatesAndForceTerminates) {
   SkillConfig c = SitConfig();
   c.reference_init_prob = 0;

@@ -70,13 +70,23 @@ FurnitureParams DefaultFurnitureParams(const std::string& category);
 Object MakeFurniture(const std::string& category, const FurnitureParams& params,
                      const std::string& instance = "");
 
-/// Random dimensions: training pieces scale each nominal dimension by U[0.9, 1.1]; held-out
-/// pieces by U[0.76, 0.86] or U[1.14, 1.24], so the two sets never share a dimension value.
-FurnitureParams RandomFurnitureParams(const std::string& category, Rng& rng, bool held_out);
+/// The factor range training pieces draw each nominal dimension from; the held-out bands
+/// [0.76, 0.86] and [1.14, 1.24] are cut out of it, so a wider range still never gives a
+/// training piece a held-out value.
+struct TrainingScale {
+  double min = 0.9;  ///< Smallest factor (> 0, ≤ 0.9).
+  double max = 1.1;  ///< Largest factor (≥ 1.1).
+};
 
-/// MakeFurniture(category, RandomFurnitureParams(category, rng, held_out), instance).
+/// Random dimensions: training pieces scale each nominal dimension by a factor uniform over
+/// `training` minus the held-out bands (default U[0.9, 1.1]); held-out pieces by U[0.76, 0.86]
+/// or U[1.14, 1.24], so the two sets never share a dimension value.
+FurnitureParams RandomFurnitureParams(const std::string& category, Rng& rng, bool held_out,
+                                      const TrainingScale& training = {});
+
+/// MakeFurniture(category, RandomFurnitureParams(category, rng, held_out, training), instance).
 Object RandomFurniture(const std::string& category, Rng& rng, bool held_out,
-                       const std::string& instance = "");
+                       const std::string& instance = "", const TrainingScale& training = {});
 
 /// Rotates an object by `yaw` (radians, about +z through its origin) and moves its origin to
 /// (x, y) on the floor.

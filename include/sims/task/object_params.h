@@ -14,9 +14,14 @@ struct ObjectParams {
   std::vector<std::string> object_categories;  ///< Procedural categories to train on.
   int num_objects = 16;                        ///< Objects in the training ground.
   bool held_out_objects = false;               ///< Held-out dimension ranges (evaluation).
-  double spawn_min_distance = 1.0;             ///< Character spawn distance from the object (m).
-  double spawn_max_distance = 4.0;             ///< ... (m).
-  double spawn_arc_deg = 360;  ///< Default starts within ±arc/2 of the object's front (deg).
+  /// Training pieces scale each nominal dimension by a factor in [training_scale_min,
+  /// training_scale_max] outside the held-out bands (scene::TrainingScale): sit 12175 succeeded
+  /// in 64 of 100 standing starts on ±10 % training pieces but 43 on held-out ones.
+  double training_scale_min = 0.9;
+  double training_scale_max = 1.1;  ///< ...
+  double spawn_min_distance = 1.0;  ///< Character spawn distance from the object (m).
+  double spawn_max_distance = 4.0;  ///< ... (m).
+  double spawn_arc_deg = 360;       ///< Default starts within ±arc/2 of the object's front (deg).
   /// Default starts widen from spawn_min_distance to spawn_max_distance as each env succeeds:
   /// its level rises by spawn_curriculum_step after a completed default-start episode and falls
   /// by half that after a failed one (evaluation turns it off: full range).
@@ -46,6 +51,8 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(object_categories));
     a->Visit(SIMS_NVP(num_objects));
     a->Visit(SIMS_NVP(held_out_objects));
+    a->Visit(SIMS_NVP(training_scale_min));
+    a->Visit(SIMS_NVP(training_scale_max));
     a->Visit(SIMS_NVP(spawn_min_distance));
     a->Visit(SIMS_NVP(spawn_max_distance));
     a->Visit(SIMS_NVP(spawn_arc_deg));
