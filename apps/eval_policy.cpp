@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
   app.add_option("--skill", o.skill, "expected skill (default: the policy's)");
   app.add_option("--trials", o.trials, "number of trials")->check(CLI::PositiveNumber);
   app.add_option("--seed", o.seed, "environment seed");
+  app.add_option("--objects", o.num_objects,
+                 "pieces in the evaluation ground, a fixed test set whatever the training used "
+                 "(default 16; 0 = the policy's num_objects)");
   app.add_option("--config", config, "TrainConfig JSON instead of the policy's metadata");
   app.add_option("--scene-plan", o.scene_plan, "UniHSI ScenePlan plan.json[#id] (unified)");
   app.add_option("--partnet", partnet, "PartNet folder for --scene-plan");

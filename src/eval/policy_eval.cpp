@@ -270,6 +270,10 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   // targets 3–5 m away).
   const task::SkillInfo& info = task::FindSkill(sc.skill);
   sc.object.held_out_objects = o.held_out;
+  if (o.num_objects < 0)
+    ThrowInputError("--objects", "num_objects", "a non-negative count (0 = the policy's)",
+                    std::to_string(o.num_objects));
+  if (o.num_objects > 0) sc.object.num_objects = o.num_objects;
   sc.object.spawn_curriculum = false;  // the full spawn-distance range
   // Standing starts unless asked for the training's clip starts (a diagnostic: can the policy
   // finish a motion it is placed in?).

@@ -69,6 +69,7 @@ PolicyEvalOptions TwoEnvOptions(const fs::path& policy, int trials) {
   o.trials = trials;
   o.num_envs = 2;
   o.threads = 2;
+  o.num_objects = 0;  // the tiny policies' own grounds (2 pieces) keep the tests quick
   return o;
 }
 
@@ -167,6 +168,17 @@ TEST(PolicyEvalTest, EndStatesAreKeptRelativeToTheSeat) {
     EXPECT_LT(d, 6.0);
     EXPECT_GT(e.pose.root_pos.z(), 0.5);
   }
+  // The evaluation ground's size is the option's, not the training's: 2 pieces given
+  // explicitly are the policy's own ground, 3 a different test set.
+  o.end_states.clear();
+  o.num_objects = 2;
+  EXPECT_EQ(EvaluatePolicy(o).ToJson().dump(), plain);
+  o.num_objects = 3;
+  EXPECT_NE(EvaluatePolicy(o).ToJson().dump(), plain);
+  o.num_objects = -1;
+  ExpectError([&] { EvaluatePolicy(o); }, {"--objects", "non-negative"});
+  o.num_objects = 0;
+  o.end_states = sims::testing::TempDir("eval_end_states_out") / "ends.json";
   o.checkpoint = TinyPolicy(WalkConfig(), 12, "eval_end_states_walk");
   ExpectError([&] { EvaluatePolicy(o); }, {"--end-states", "walk"});
 }

@@ -44,8 +44,11 @@ struct PolicyEvalOptions {
   int num_envs = 0;                    ///< Parallel environments (0 = min(trials, 16)).
   int threads = 0;                     ///< Env threads (0 = the process setting).
   bool held_out = true;                ///< Held-out object dimensions.
-  sim::ObsAblation ablation;           ///< Inputs withheld from the policy (--no-text, ...).
-  double reference_starts = 0;         ///< Share of trials started from motion clips (0–1).
+  /// Pieces in the evaluation ground, whatever the training's num_objects, so a run trained
+  /// on more pieces is tested on the same set (0 = the policy's config).
+  int num_objects = 16;
+  sim::ObsAblation ablation;    ///< Inputs withheld from the policy (--no-text, ...).
+  double reference_starts = 0;  ///< Share of trials started from motion clips (0–1).
   /// Keeps the skill's training start settings instead of its evaluation ones (SkillInfo::
   /// configure_eval): get-up's reach into the rise or its backplay window (levels from 0), a
   /// diagnostic of what the policy trains on.
