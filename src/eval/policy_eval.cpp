@@ -203,6 +203,11 @@ nlohmann::json PolicyEvalReport::ToJson() const {
                    {"num_steps", t.num_steps},
                    {"length", t.length}});
     if (!t.start.empty()) per.back()["start"] = t.start;
+    if (!t.object.empty()) {
+      per.back()["object"] = t.object;
+      per.back()["object_extent"] = {t.object_extent.x(), t.object_extent.y(), t.object_extent.z()};
+      per.back()["start_distance"] = t.start_distance;
+    }
     if (style) {
       per.back()["caption"] = t.caption;
       per.back()["emotion"] = t.emotion;
@@ -367,6 +372,13 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
     rep.results[trial[i]].start = setup.skill->start_label(i);
+    if (object_skill && setup.context.scene) {
+      TrialResult& t = rep.results[trial[i]];
+      const task::ObjectGeometry& g = object_skill->geometry(i);
+      t.object = setup.context.scene->objects[g.object].instance;
+      t.object_extent = g.local.max - g.local.min;
+      t.start_distance = (env.pose(i).root_pos.head<2>() - g.center).norm();
+    }
     if (trial[i] < record_trials) {
       recording[i] =
           std::make_unique<io::MotionRecordBuilder>(setup.context.humanoid, 1.0 / rep.control_dt);

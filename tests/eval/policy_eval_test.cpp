@@ -156,7 +156,18 @@ TEST(PolicyEvalTest, EndStatesAreKeptRelativeToTheSeat) {
   EXPECT_EQ(r.ToJson().dump(), plain) << "recording changes nothing";
   const std::vector<task::HandoffState> ends = task::LoadHandoffStates(o.end_states);
   int kept = 0;
-  for (const TrialResult& t : r.results) kept += !t.fell && !t.force_end;
+  for (const TrialResult& t : r.results) {
+    kept += !t.fell && !t.force_end;
+    // Each trial names its piece, its size and how far from it the character started.
+    EXPECT_EQ(t.object.rfind("chair_", 0) == 0 || t.object.rfind("armchair_", 0) == 0 ||
+                  t.object.rfind("sofa_", 0) == 0 || t.object.rfind("stool_", 0) == 0,
+              true)
+        << t.object;
+    EXPECT_GT(t.object_extent.minCoeff(), 0.2);
+    EXPECT_GT(t.start_distance, 0.5);
+    EXPECT_LT(t.start_distance, 6.0);
+  }
+  EXPECT_TRUE(r.ToJson()["results"][0].contains("object_extent"));
   ASSERT_GT(kept, 0);
   ASSERT_EQ(static_cast<int>(ends.size()), kept);
   for (const task::HandoffState& e : ends) {

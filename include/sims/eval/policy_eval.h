@@ -84,9 +84,15 @@ struct TrialResult {
   int num_steps = 1;        ///< Plan steps of the trial.
   int length = 0;           ///< Control steps the trial ran.
   std::string start;        ///< How the trial started (Skill::start_label; "" = no kinds).
-  std::string caption;      ///< Style evaluation: the caption whose z the policy saw.
-  std::string emotion;      ///< ... its emotion.
-  std::string style;        ///< ... the classifier's label of the motion ("" = too short).
+  /// Object skills: the piece of the trial (instance id), its object-frame extent (m) and the
+  /// pelvis's horizontal distance from the piece's centre at the start (m), so failures can be
+  /// grouped by size and approach length ("" / zeros for other skills).
+  std::string object;
+  Eigen::Vector3d object_extent = Eigen::Vector3d::Zero();
+  double start_distance = 0;  ///< ...
+  std::string caption;        ///< Style evaluation: the caption whose z the policy saw.
+  std::string emotion;        ///< ... its emotion.
+  std::string style;          ///< ... the classifier's label of the motion ("" = too short).
 };
 
 /// Style evaluation results (PolicyEvalOptions::style_eval).
