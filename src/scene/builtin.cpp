@@ -351,12 +351,9 @@ double TrainingFactor(const TrainingScale& t, Rng& rng) {
   if (lo < t.max) pieces[n][0] = lo, pieces[n][1] = t.max, length += t.max - lo, ++n;
   if (n == 1) return rng.Uniform(pieces[0][0], pieces[0][1]);
   double u = rng.Uniform() * length;
-  for (int k = 0; k < n; ++k) {
-    const double w = pieces[k][1] - pieces[k][0];
-    if (u < w || k == n - 1) return pieces[k][0] + std::min(u, w);
-    u -= w;
-  }
-  return 1.0;  // unreachable: the loop returns at its last piece
+  int k = 0;
+  for (; k < n - 1 && u >= pieces[k][1] - pieces[k][0]; ++k) u -= pieces[k][1] - pieces[k][0];
+  return std::min(pieces[k][0] + u, pieces[k][1]);
 }
 
 }  // namespace
