@@ -336,23 +336,25 @@ constexpr double kHeldOutBands[2][2] = {{0.76, 0.86}, {1.14, 1.24}};
 // allowed length and walked along the pieces, so the stream uses one number per factor
 // whatever the range (the default range, which meets no band, is exactly U[0.9, 1.1]).
 double TrainingFactor(const TrainingScale& t, Rng& rng) {
-  double pieces[3][2];
+  double pieces[3][2];  // the allowed [a, b] between the bands, in order
   int n = 0;
-  double lo = t.min, length = 0;
+  auto add = [&](double a, double b) {
+    if (b > a) pieces[n][0] = a, pieces[n][1] = b, ++n;
+  };
+  auto width = [&](int k) { return pieces[k][1] - pieces[k][0]; };
+  double lo = t.min;
   for (const auto& band : kHeldOutBands) {
-    if (band[0] > lo) {
-      pieces[n][0] = lo;
-      pieces[n][1] = std::min(band[0], t.max);
-      if (pieces[n][1] > pieces[n][0]) length += pieces[n][1] - pieces[n][0], ++n;
-    }
-    lo = std::max(lo, band[1]);
     if (lo >= t.max) break;
+    if (band[0] > lo) add(lo, std::min(band[0], t.max));
+    lo = std::max(lo, band[1]);
   }
-  if (lo < t.max) pieces[n][0] = lo, pieces[n][1] = t.max, length += t.max - lo, ++n;
+  add(lo, t.max);
   if (n == 1) return rng.Uniform(pieces[0][0], pieces[0][1]);
+  double length = 0;
+  for (int k = 0; k < n; ++k) length += width(k);
   double u = rng.Uniform() * length;
   int k = 0;
-  for (; k < n - 1 && u >= pieces[k][1] - pieces[k][0]; ++k) u -= pieces[k][1] - pieces[k][0];
+  for (; k < n - 1 && u >= width(k); ++k) u -= width(k);
   return std::min(pieces[k][0] + u, pieces[k][1]);
 }
 
