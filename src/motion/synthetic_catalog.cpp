@@ -299,7 +299,8 @@ BodyKey SupineKey(const FurnitureSpec& bed, double t) {
   BodyKey k;
   k.t = t;
   k.hold = true;
-  k.pelvis = Eigen::Vector3d(bed.front_x - 0.5, 0.0, bed.height + 0.11);
+  // Mid-depth: a bed is 1 m deep here, a sofa's seat ~0.7 m.
+  k.pelvis = Eigen::Vector3d(bed.front_x - 0.5 * bed.depth, 0.0, bed.height + 0.11);
   k.yaw = -Deg(90);
   k.pitch = -Deg(90);
   k.dofs[kRShX] = -Deg(8), k.dofs[kLShX] = Deg(8);
@@ -1014,6 +1015,16 @@ void BedSection::Validate() const {
   Require(lie_hold >= 0, "lie_hold", "a non-negative time (s)");
 }
 
+void SofaLieSection::Validate() const {
+  for (double h : heights) Require(h > 0.2 && h < 1.0, "heights", "seat heights in (0.2, 1.0) m");
+  Require(depth >= 0.4 && depth <= 1.2, "depth", "a seat depth in [0.4, 1.2] m");
+  Require(width >= 1.2, "width", "a seat width ≥ 1.2 m (room to lie along it)");
+  Require(pelvis_offset >= 0 && pelvis_offset < 0.5 * width, "pelvis_offset",
+          "an offset in [0, width / 2) m");
+  Require(lie_hold >= 0, "lie_hold", "a non-negative time (s)");
+  Require(lie_down.name.empty() || !furniture.empty(), "furniture", "at least one furniture label");
+}
+
 void LieIdleSection::Validate() const {
   Require(duration > 0, "duration", "a positive duration (s)");
 }
@@ -1058,6 +1069,7 @@ void SyntheticCatalog::Validate() const {
   for (const auto& r : lie_idle.recipes) unique("lie_idle.recipes", r.name);
   for (const auto& r : reach.recipes) unique("reach.recipes", r.name);
   for (const auto& r : floor_getup.recipes) unique("floor_getup.recipes", r.name);
+  if (!sofa_lie.lie_down.name.empty()) unique("sofa_lie.lie_down", sofa_lie.lie_down.name);
 }
 
 std::filesystem::path DefaultSyntheticCatalogPath() {
@@ -1354,6 +1366,22 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
       MotionMeta meta = Meta(beds.getup, "getup", 0, beds.furniture);
       meta.name += suffix;
       out.push_back(Build(GetUpFromBedKeys(bed), n, meta, fps, {bed}));
+    }
+  }
+  // Sofa lie-downs last of all, for the same reason.
+  const SofaLieSection& sofa = catalog.sofa_lie;
+  if (wanted("lie") && !sofa.lie_down.name.empty()) {
+    for (double h : sofa.heights) {
+      FurnitureSpec seat = PlaceSeat(h, sofa.depth, sofa.width);
+      // The character sits down at y = 0 and lies with its head toward +y.
+      seat.center_y = -sofa.pelvis_offset;
+      std::vector<BodyKey> keys = LieDownKeys(seat);
+      keys.push_back(At(keys.back(), keys.back().t + sofa.lie_hold, true));
+      IdleNoise n;
+      n.seed = rng.NextU64();
+      MotionMeta meta = Meta(sofa.lie_down, "lie", 0, sofa.furniture);
+      meta.name += "_h" + std::to_string(std::lround(100 * h));
+      out.push_back(Build(keys, n, meta, fps, {seat}));
     }
   }
   return out;

@@ -169,14 +169,22 @@ bool ClipFurnitureFrame(const motion::MotionClip& clip, const ObjectGeometry& g,
     if (!prm.count(key)) return false;
   const double h = prm.at("furniture_height"), w = prm.at("furniture_width");
   const double fx = prm.at("furniture_front_x"), cy = prm.at("furniture_center_y");
-  const bool bed = m.skill == "lie" ||
-                   std::find(m.furniture.begin(), m.furniture.end(), "bed") != m.furniture.end();
+  auto fits = [&](const char* what) {
+    return std::find(m.furniture.begin(), m.furniture.end(), what) != m.furniture.end();
+  };
+  // A sofa lie-down lies along the seat like a seat clip sits on it; lateral_offset is then the
+  // lie skill's side (the arm the head goes to), which only the clips with their head that way
+  // (+y, or −y when mirrored) fit.
+  const bool sofa_lie = m.skill == "lie" && fits("sofa") && !fits("bed");
+  if (sofa_lie && lateral_offset != 0 && (lateral_offset < 0) != m.mirrored) return false;
+  const bool bed = !sofa_lie && (m.skill == "lie" || fits("bed"));
   if (!bed) {
     // Seat clips: the character faces +x with the seat behind it, seat front edge at x = fx;
     // the object faces the same way (+x is a seat's front).
     const ObjectPart* seat = g.part(kSeatPart);
     if (!seat) return false;
-    const double sy = 0.5 * (seat->local.min.y() + seat->local.max.y()) + lateral_offset;
+    const double sy =
+        0.5 * (seat->local.min.y() + seat->local.max.y()) + (sofa_lie ? 0.0 : lateral_offset);
     *p_clip = Eigen::Vector2d(fx - seat->local.max.x(), cy - sy);
     *yaw_clip = 0;
     *dz = seat->local.max.z() - h;

@@ -61,16 +61,23 @@ TEST(SyntheticTest, CatalogueCoversSkillsWithLabels) {
   for (const char* s : {"walk", "idle", "sit", "lie", "reach", "getup"})
     EXPECT_GE(skills[s], 2) << s;
   // Every recipe comes as its base clip and one "_v1" variant (SyntheticOptions::variants);
-  // the beds of extra heights ("_h<cm>") come once each.
+  // the beds of extra heights and the sofa lie-downs ("_h<cm>") come once each.
   EXPECT_EQ(SyntheticOptions{}.variants, 2);
-  int base = 0, v1 = 0;
+  int base = 0, v1 = 0, sofa = 0;
   for (const MotionClip& c : Catalogue()) {
     const std::string& n = c.meta().name;
+    if (n.rfind("lie_down_sofa_h", 0) == 0) {
+      ++sofa;
+      EXPECT_EQ(c.meta().furniture, std::vector<std::string>{"sofa"});
+      EXPECT_EQ(c.meta().skill, "lie");
+      continue;
+    }
     if (n.find("_bed_h") != std::string::npos) continue;
     const bool variant = n.size() > 3 && n.compare(n.size() - 3, 3, "_v1") == 0;
     (variant ? v1 : base) += 1;
   }
   EXPECT_EQ(v1, base);
+  EXPECT_EQ(sofa, 2);  // configs/motion/synthetic_catalog.json: sofa_lie.heights
   EXPECT_GE(skills["walk"], 20);
   for (const char* e :
        {"neutral", "sad", "tired", "drunk", "hurried", "angry", "happy", "relaxed", "stressed"})

@@ -1,5 +1,6 @@
 #include "sims/task/lie/lie.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -25,6 +26,11 @@ SkillConfig LieConfig() {
   return c;
 }
 
+bool IsSofaClip(const motion::MotionClip& c) {
+  const auto& f = c.meta().furniture;
+  return std::find(f.begin(), f.end(), "sofa") != f.end();
+}
+
 TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
   // The lying clips (and their mirrors: head toward the other end, approached from the other
   // side) placed on each bed end with the pelvis on the mattress and the head on a pillow.
@@ -41,6 +47,12 @@ TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
       for (bool mirror : {false, true}) {
         const motion::MotionClip c = mirror ? motion::MirrorClip(lib.clip(clip)) : lib.clip(clip);
         if (c.meta().style == "on side") continue;  // lies on its side, head lower
+        if (IsSofaClip(c)) {
+          Eigen::Vector2d p;
+          double yaw = 0, dz = 0;
+          EXPECT_FALSE(ClipFurnitureFrame(c, g, 0.0, &p, &yaw, &dz)) << "a sofa clip on a bed";
+          continue;
+        }
         Eigen::Vector2d p_clip;
         double yaw_clip = 0, dz = 0;
         ASSERT_TRUE(ClipFurnitureFrame(c, g, 0.0, &p_clip, &yaw_clip, &dz));
@@ -106,7 +118,7 @@ TEST(LieSkillTest, GoalsRewardAndThreshold) {
 }
 
 // Stories lie on sofas: a sofa's seat is the surface (long axis y, approached from the front),
-// the head goes to either arm; armchairs are too narrow to lie on.
+// the head goes to the episode's arm; armchairs are too narrow to lie on.
 TEST(LieSkillTest, SofasAreLainOnAlongTheSeat) {
   SkillConfig c = LieConfig();
   c.reference_init_prob = 0;
@@ -122,7 +134,7 @@ TEST(LieSkillTest, SofasAreLainOnAlongTheSeat) {
     const scene::Aabb& seat = g.part_local(kSeatPart);
     EXPECT_GT(seat.max.y() - seat.min.y(), 1.2);
     const Eigen::Vector3d target_O = g.X_WO.inverse() * lie->target(i);
-    EXPECT_TRUE(target_O.head<2>().isApprox(seat.center().head<2>(), 1e-9));
+    EXPECT_NEAR(target_O.x(), seat.center().x(), 1e-9);  // y: toward the head's arm (below)
     EXPECT_NEAR(target_O.z(), seat.max.z() + 0.11, 1e-9);
     // The far anchor stands in front of the sofa.
     const Eigen::Vector3d anchor_O =
@@ -131,6 +143,57 @@ TEST(LieSkillTest, SofasAreLainOnAlongTheSeat) {
     EXPECT_NEAR(anchor_O.y(), seat.center().y(), 1e-9);
     EXPECT_EQ(lie->goal_mask(i), (1u << humanoid::kCjPelvis) | (1u << humanoid::kCjHead));
   }
+  // The sofa lie-downs (and their mirrors, head toward the other arm) fit the side whose arm
+  // their head goes to, end with the pelvis on the seat, and their lying pose moved onto the
+  // episode's target succeeds (pelvis and head within 0.2 m) on every sofa, wide or narrow.
+  const auto& lib = *s.setup.context.motions;
+  const auto& scene = *s.setup.context.scene;
+  const auto& model = *s.setup.context.humanoid;
+  humanoid::MjDataPtr scratch = humanoid::MakeData(model.model());
+  int checked = 0;
+  for (int i = 0; i < 4; ++i) {
+    const ObjectGeometry& g = lie->geometry(i);
+    const double side = lie->lateral(i);
+    ASSERT_EQ(std::abs(side), 1.0);
+    const Eigen::Vector3d target_O = g.X_WO.inverse() * lie->target(i);
+    const scene::Aabb& seat = g.part_local(kSeatPart);
+    const double half = 0.5 * (seat.max.y() - seat.min.y());
+    EXPECT_NEAR(target_O.y() - seat.center().y(), side * std::max(0.0, half - 0.71), 1e-9);
+    const auto& sofa = scene.objects[g.object];
+    for (int clip : lib.Find("lie")) {
+      for (bool mirror : {false, true}) {
+        const motion::MotionClip m = mirror ? motion::MirrorClip(lib.clip(clip)) : lib.clip(clip);
+        Eigen::Vector2d p_clip;
+        double yaw_clip = 0, dz = 0;
+        const bool fits = ClipFurnitureFrame(m, g, side, &p_clip, &yaw_clip, &dz);
+        EXPECT_EQ(fits, IsSofaClip(m) && m.meta().mirrored == (side < 0)) << m.meta().name;
+        if (!fits || std::abs(dz) > kMaxClipHeightMismatch) continue;
+        const auto place =
+            ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
+        humanoid::HumanoidPose pose = place.Apply(m.FramePose(m.num_frames() - 1));
+        humanoid::BodyStates b;
+        humanoid::ForwardKinematics(model, pose, scratch.get(), &b);
+        Eigen::Vector3d pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
+        const auto& seat_part = sofa.parts[g.part_index(kSeatPart)];
+        EXPECT_LT((scene::NearestPointOnPart(seat_part, pelvis) - pelvis).norm(), 0.2)
+            << m.meta().name;
+        // The same pose lying on the target.
+        pose.root_pos += lie->target(i) - pelvis;
+        humanoid::ForwardKinematics(model, pose, scratch.get(), &b);
+        pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
+        const Eigen::Vector3d head = humanoid::ContactJointPosition(b, humanoid::kCjHead);
+        double head_d = 1e9;
+        for (const char* arm : {"left arm", "right arm"})
+          for (int k : g.part_indices(arm))
+            head_d =
+                std::min(head_d, (scene::NearestPointOnPart(sofa.parts[k], head) - head).norm());
+        EXPECT_LT((pelvis - lie->target(i)).norm(), 1e-9);
+        EXPECT_LT(head_d, 0.2) << m.meta().name << " on a seat " << 2 * half << " m wide";
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 4);
   c.object.object_categories = {"armchair"};
   try {
     MakeSkillEnv(c, 1);

@@ -288,6 +288,39 @@ struct BedSection {
   void Validate() const;
 };
 
+/// Lying down on a sofa: the bed's lie-down (sit on the front edge, lean back, swing the legs up)
+/// on a seat whose long axis is y, the pelvis over the seat's middle and the head toward an arm.
+/// Stories lie on sofas, and without such clips the lie skill's sofa episodes had no reference
+/// starts and no demonstrations of it.
+struct SofaLieSection {
+  std::vector<std::string> furniture = {"sofa"};  ///< Furniture labels.
+  /// Seat heights (m), one clip each (names end in _h<cm>); reference starts take a clip within
+  /// 0.05 m of a sofa's seat. Below 0.42 m the lie-down's legs cross the trunk by more than
+  /// the 3 cm the clip checks allow (0.050 m at 0.36 m).
+  std::vector<double> heights = {0.42, 0.48};
+  double depth = 0.7;   ///< Seat depth from the front edge to the back (m).
+  double width = 1.68;  ///< Seat width between the arms (m).
+  /// How far the pelvis lies from the seat's middle toward the arm the head rests by (m; the
+  /// lie skill's sofa target: 0.13 on a 1.68 m seat).
+  double pelvis_offset = 0.13;
+  double lie_hold = 1.5;     ///< Seconds held lying after lying down.
+  SyntheticLabels lie_down;  ///< Clip labels (skill lie); an empty name writes no clips.
+
+  /// Lists the fields for JSON binding.
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(furniture));
+    a->Visit(SIMS_NVP(heights));
+    a->Visit(SIMS_NVP(depth));
+    a->Visit(SIMS_NVP(width));
+    a->Visit(SIMS_NVP(pelvis_offset));
+    a->Visit(SIMS_NVP(lie_hold));
+    a->Visit(SIMS_NVP(lie_down));
+  }
+  /// Checks ranges and labels.
+  void Validate() const;
+};
+
 /// Lying idles on the bed of BedSection.
 struct LieIdleSection {
   std::vector<std::string> furniture = {"bed"};  ///< Default furniture labels.
@@ -405,6 +438,7 @@ struct SyntheticCatalog {
   LieIdleSection lie_idle;        ///< Skill lie.
   ReachSection reach;             ///< Skill reach.
   FloorGetUpSection floor_getup;  ///< Skill getup (from the floor).
+  SofaLieSection sofa_lie;        ///< Skill lie (on sofas).
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -417,6 +451,7 @@ struct SyntheticCatalog {
     a->Visit(SIMS_NVP(lie_idle));
     a->Visit(SIMS_NVP(reach));
     a->Visit(SIMS_NVP(floor_getup));
+    a->Visit(SIMS_NVP(sofa_lie));
   }
   /// Checks that clip names are unique.
   void Validate() const;

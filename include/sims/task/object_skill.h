@@ -117,8 +117,9 @@ double FurnitureShare(const motion::MotionClip& clip, double pelvis_z);
 /// The object frame of a seat or bed clip (meta params furniture_*; see motion/synthetic.h:
 /// the character starts at the origin facing +x, the furniture lies at x < front_x) expressed
 /// in clip coordinates, for an object with geometry `g`. Returns false when the clip carries no
-/// furniture parameters or the object lacks the part the clip needs (seat or mattress). `dz`
-/// receives object top − clip furniture height.
+/// furniture parameters or the object lacks the part the clip needs (seat or mattress; a lie
+/// clip for a sofa, not a bed, needs the seat and lies along it, and fits only a non-zero
+/// `lateral_offset` of its head's side). `dz` receives object top − clip furniture height.
 bool ClipFurnitureFrame(const motion::MotionClip& clip, const ObjectGeometry& g,
                         double lateral_offset, Eigen::Vector2d* p_clip, double* yaw_clip,
                         double* dz);

@@ -1,5 +1,7 @@
 #include "sims/task/lie/lie.h"
 
+#include <algorithm>
+
 #include "sims/humanoid/features.h"
 
 namespace sims::task {
@@ -10,6 +12,11 @@ constexpr double kLyingPelvisHeight = 0.11;
 // A seat this wide (m) is a sofa to lie on: a default sofa's seat is 1.68 m between its arms,
 // an armchair's 0.55 m.
 constexpr double kSofaMinWidth = 1.2;
+// Lying, the head contact point is this far from the pelvis's along the body (the lie clips'
+// end pose: 0.61 m).
+constexpr double kLyingHeadReach = 0.61;
+// Where the head comes to rest short of a sofa arm's inner face (about the head's radius).
+constexpr double kHeadToArm = 0.1;
 
 // The surface lain on: a bed's mattress, else a sofa's seat.
 const scene::Aabb& LyingSurface(const ObjectGeometry& g) {
@@ -28,11 +35,19 @@ SurfaceTask LieTask() {
   t.fallback_min_width = kSofaMinWidth;
   // The side of the bed the character lies down from (the clips come in mirrored pairs).
   t.lateral = [](const ObjectGeometry&, Rng& rng) { return rng.Bernoulli(0.5) ? 1.0 : -1.0; };
-  // The surface centre, the lying pelvis height (the lie clips: 0.11 m) above its top.
-  t.target_local = [](const ObjectGeometry& g, double, const SkillConfig&) {
+  // The surface centre, the lying pelvis height (the lie clips: 0.11 m) above its top. On a
+  // sofa the head must reach an arm: the pelvis moves toward the episode's side so that a
+  // lying head (kLyingHeadReach ahead) comes within kHeadToArm of it; from the centre the head
+  // stayed 0.33 m from the arms of the wider sofas, beyond the success distance.
+  t.target_local = [](const ObjectGeometry& g, double side, const SkillConfig&) {
     const scene::Aabb& surface = LyingSurface(g);
     const Eigen::Vector3d mid = surface.center();
-    return Eigen::Vector3d(mid.x(), mid.y(), surface.max.z() + kLyingPelvisHeight);
+    double y = mid.y();
+    if (!g.part(kMattressPart)) {
+      const double half = 0.5 * (surface.max.y() - surface.min.y());
+      y += (side < 0 ? -1.0 : 1.0) * std::max(0.0, half - kLyingHeadReach - kHeadToArm);
+    }
+    return Eigen::Vector3d(mid.x(), y, surface.max.z() + kLyingPelvisHeight);
   };
   // A stand point beside the bed's long side (a procedural bed's long axis is its x), or in
   // front of the sofa (its long axis is y, its front +x).
