@@ -19,13 +19,33 @@ namespace sims::story {
 
 namespace {
 
-Eigen::MatrixXd ReferenceFeatures(const std::filesystem::path& manifest) {
+// The demonstration clips' pose features (FID) and their foot sliding by the stories' own
+// measure: what a policy that moved exactly like its demos would score.
+struct Reference {
+  Eigen::MatrixXd features;
+  eval::FootSliding sliding;
+};
+
+Reference LoadReference(const std::filesystem::path& manifest) {
   auto humanoid = std::make_shared<const humanoid::Humanoid>(humanoid::BuildModel());
   const auto lib = motion::MotionLibrary::Load(manifest, humanoid);
   std::vector<Eigen::MatrixXd> parts;
-  for (int i = 0; i < lib.num_clips(); ++i)
-    parts.push_back(eval::PoseFeatures(io::RecordFromClip(lib.clip(i), 30.0), 3));
-  return eval::StackRows(parts);
+  double speed_sum = 0, fast_sum = 0;
+  Reference r;
+  for (int i = 0; i < lib.num_clips(); ++i) {
+    const io::MotionRecord record = io::RecordFromClip(lib.clip(i), 30.0);
+    parts.push_back(eval::PoseFeatures(record, 3));
+    const eval::FootSliding s = eval::MeasureFootSliding(record);
+    speed_sum += s.mean_speed * s.contact_pairs;
+    fast_sum += s.sliding_ratio * s.contact_pairs;
+    r.sliding.contact_pairs += s.contact_pairs;
+  }
+  r.features = eval::StackRows(parts);
+  if (r.sliding.contact_pairs > 0) {
+    r.sliding.mean_speed = speed_sum / r.sliding.contact_pairs;
+    r.sliding.sliding_ratio = fast_sum / r.sliding.contact_pairs;
+  }
+  return r;
 }
 
 }  // namespace
@@ -52,8 +72,9 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       fsm::LoadPolicySet(o.policies.empty() ? fsm::DefaultPolicySetPath() : o.policies);
   fsm::StoryOptions story = o.story;
   story.missing_policy_fails = true;
-  const Eigen::MatrixXd reference =
-      o.reference_manifest.empty() ? Eigen::MatrixXd() : ReferenceFeatures(o.reference_manifest);
+  const Reference ref =
+      o.reference_manifest.empty() ? Reference{} : LoadReference(o.reference_manifest);
+  const Eigen::MatrixXd& reference = ref.features;
 
   // Plan every story first, then run them (together, in batches), then measure each in the
   // order of the rows: the same stories, results and report as running them one by one.
@@ -198,6 +219,10 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
       out["reference_apd"] = eval::AveragePairwiseDistance(reference);
     }
   }
+  if (ref.sliding.contact_pairs > 0) {
+    out["reference_foot_sliding_m_per_s"] = ref.sliding.mean_speed;
+    out["reference_foot_sliding_ratio"] = ref.sliding.sliding_ratio;
+  }
   const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
   out["timing"] = {{"prepare_s", seconds(t0, t1)},
                    {"run_s", seconds(t1, t2)},
@@ -309,11 +334,13 @@ std::string StoryEvalHtml(const nlohmann::json& report) {
       "<th>success steps</th><th>contact error (m)</th><th>penetration</th>"
       "<th>max depth (m)</th><th>foot sliding (m/s)</th><th>FID</th><th>APD</th></tr>\n{}"
       "</table>\n<p>Success rate: keyframes succeeded / keyframes. The paper's column is its "
-      "full method's success rate, for scale.</p>\n"
+      "full method's success rate, for scale. Foot sliding of the demonstration clips by the "
+      "same measure: {} m/s.</p>\n"
       "<h2>Keyframes per skill (all difficulties)</h2>\n<table>\n"
       "<tr><th>skill</th><th>keyframes</th><th>succeeded</th><th>success rate</th>"
       "<th>falls</th></tr>\n{}</table>\n</body></html>\n",
-      report.value("policies", std::string("?")), ablation.dump(), rows, skill_rows);
+      report.value("policies", std::string("?")), ablation.dump(), rows,
+      num(report, "reference_foot_sliding_m_per_s", 3), skill_rows);
 }
 
 }  // namespace sims::story

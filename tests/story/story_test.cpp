@@ -325,7 +325,10 @@ TEST(StoryEvalHtmlTest, OneRowPerDifficultyWithItsFigures) {
                              {"hard", {{"stories", 2}, {"success_rate", 0.5}}}}}};
   report["per_skill"]["sit"] = {
       {"keyframes", 8}, {"succeeded", 2}, {"success_rate", 0.25}, {"falls", 1}};
+  report["reference_foot_sliding_m_per_s"] = 0.0312;
   const std::string html = StoryEvalHtml(report);
+  EXPECT_NE(html.find("demonstration clips by the same measure: 0.031 m/s"), std::string::npos)
+      << html;
   EXPECT_NE(html.find("<table>"), std::string::npos);
   EXPECT_NE(html.find("<tr><td>simple</td><td>30</td><td>27.5 %</td><td>74.3 %</td><td>0.80</td>"
                       "<td>0.937</td><td>0.90 %</td><td>0.047</td><td>0.420</td><td>3.33</td>"
