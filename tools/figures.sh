@@ -86,7 +86,8 @@ out, skills, trials, seeds, eval_seed, story, stories = sys.argv[1:8]
 fig = {"policies": {}, "story": {}, "retrieval": {}, "stories": {}}
 e = json.load(open(os.path.join(out, "eval_story.json")))
 fig["stories"] = {"command": f"eval_story --stories {stories} --seed 0",
-                  "per_difficulty": e["per_difficulty"], "per_skill": e.get("per_skill", {})}
+                  "per_difficulty": e["per_difficulty"], "per_skill": e.get("per_skill", {}),
+                  "reference_foot_sliding_m_per_s": e.get("reference_foot_sliding_m_per_s")}
 for skill in skills.split():
     e = json.load(open(os.path.join(out, f"eval_{skill}.json")))
     fig["policies"][skill] = {k: e[k] for k in (
@@ -157,6 +158,9 @@ if per_skill:
     lines += ["", "Keyframes per skill over those stories: " + ", ".join(
         f"{k} {x['succeeded']}/{x['keyframes']} ({x['falls']} falls)"
         for k, x in sorted(per_skill.items())) + "."]
+ref_slide = fig["stories"].get("reference_foot_sliding_m_per_s")
+if ref_slide is not None:
+    lines += ["", f"Foot sliding of the demonstration clips by the same measure: {ref_slide:.3f} m/s."]
 lines += ["", "<!-- figures:end -->"]
 text = open(sys.argv[2]).read()
 begin, end = text.find("<!-- figures:begin"), text.find("<!-- figures:end -->")
