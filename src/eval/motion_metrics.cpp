@@ -76,12 +76,16 @@ FootSliding FootSlidingMeter::Result() const {
   return s;
 }
 
-FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_height) {
-  FootSlidingMeter meter(contact_height);
+void FootSlidingMeter::AddRecord(const io::MotionRecord& record) {
   const double dt = 1.0 / record.fps;
   for (size_t t = 1; t < record.frames.size(); ++t)
     for (int foot : {humanoid::kLeftFoot, humanoid::kRightFoot})
-      meter.Add(record.frames[t - 1].body_pos[foot], record.frames[t].body_pos[foot], dt);
+      Add(record.frames[t - 1].body_pos[foot], record.frames[t].body_pos[foot], dt);
+}
+
+FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_height) {
+  FootSlidingMeter meter(contact_height);
+  meter.AddRecord(record);
   return meter.Result();
 }
 

@@ -30,22 +30,13 @@ Reference LoadReference(const std::filesystem::path& manifest) {
   auto humanoid = std::make_shared<const humanoid::Humanoid>(humanoid::BuildModel());
   const auto lib = motion::MotionLibrary::Load(manifest, humanoid);
   std::vector<Eigen::MatrixXd> parts;
-  double speed_sum = 0, fast_sum = 0;
-  Reference r;
+  eval::FootSlidingMeter sliding;  // pooled over every clip's frame pairs
   for (int i = 0; i < lib.num_clips(); ++i) {
     const io::MotionRecord record = io::RecordFromClip(lib.clip(i), 30.0);
     parts.push_back(eval::PoseFeatures(record, 3));
-    const eval::FootSliding s = eval::MeasureFootSliding(record);
-    speed_sum += s.mean_speed * s.contact_pairs;
-    fast_sum += s.sliding_ratio * s.contact_pairs;
-    r.sliding.contact_pairs += s.contact_pairs;
+    sliding.AddRecord(record);
   }
-  r.features = eval::StackRows(parts);
-  if (r.sliding.contact_pairs > 0) {
-    r.sliding.mean_speed = speed_sum / r.sliding.contact_pairs;
-    r.sliding.sliding_ratio = fast_sum / r.sliding.contact_pairs;
-  }
-  return r;
+  return {eval::StackRows(parts), sliding.Result()};
 }
 
 }  // namespace

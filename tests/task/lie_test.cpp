@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -31,6 +32,22 @@ bool IsSofaClip(const motion::MotionClip& c) {
   return std::find(f.begin(), f.end(), "sofa") != f.end();
 }
 
+// The clip's last pose placed on object g in the clip frame ClipFurnitureFrame found.
+humanoid::HumanoidPose PlacedEnd(const motion::MotionClip& c, const ObjectGeometry& g,
+                                 const Eigen::Vector2d& p_clip, double yaw_clip, double dz) {
+  const auto place =
+      ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
+  return place.Apply(c.FramePose(c.num_frames() - 1));
+}
+
+// Distance from p to the nearest of the object's parts `parts`.
+double DistanceToParts(const scene::Object& object, const std::vector<int>& parts,
+                       const Eigen::Vector3d& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (int k : parts) d = std::min(d, (scene::NearestPointOnPart(object.parts[k], p) - p).norm());
+  return d;
+}
+
 TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
   // The lying clips (and their mirrors: head toward the other end, approached from the other
   // side) placed on each bed end with the pelvis on the mattress and the head on a pillow.
@@ -56,24 +73,15 @@ TEST(LieSkillTest, BedClipsLieOnMattressAndPillow) {
         Eigen::Vector2d p_clip;
         double yaw_clip = 0, dz = 0;
         ASSERT_TRUE(ClipFurnitureFrame(c, g, 0.0, &p_clip, &yaw_clip, &dz));
-        const auto place =
-            ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
         humanoid::BodyStates b;
         humanoid::ForwardKinematics(*s.setup.context.humanoid,
-                                    place.Apply(c.FramePose(c.num_frames() - 1)), scratch.get(),
-                                    &b);
+                                    PlacedEnd(c, g, p_clip, yaw_clip, dz), scratch.get(), &b);
         const auto& bed = scene.objects[g.object];
         const Eigen::Vector3d pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
         const Eigen::Vector3d head = humanoid::ContactJointPosition(b, humanoid::kCjHead);
-        double head_d = 1e9;
-        for (int p : g.part_indices("pillow"))
-          head_d = std::min(head_d, (scene::NearestPointOnPart(bed.parts[p], head) - head).norm());
-        EXPECT_LT(
-            (scene::NearestPointOnPart(bed.parts[g.part_index(kMattressPart)], pelvis) - pelvis)
-                .norm(),
-            0.3)
+        EXPECT_LT(DistanceToParts(bed, {g.part_index(kMattressPart)}, pelvis), 0.3)
             << c.meta().name;
-        EXPECT_LT(head_d, 0.3) << c.meta().name;
+        EXPECT_LT(DistanceToParts(bed, g.part_indices("pillow"), head), 0.3) << c.meta().name;
         ++checked;
       }
     }
@@ -160,6 +168,8 @@ TEST(LieSkillTest, SofasAreLainOnAlongTheSeat) {
     const double half = 0.5 * (seat.max.y() - seat.min.y());
     EXPECT_NEAR(target_O.y() - seat.center().y(), side * std::max(0.0, half - 0.71), 1e-9);
     const auto& sofa = scene.objects[g.object];
+    std::vector<int> arms = g.part_indices("left arm");
+    for (int k : g.part_indices("right arm")) arms.push_back(k);
     for (int clip : lib.Find("lie")) {
       for (bool mirror : {false, true}) {
         const motion::MotionClip m = mirror ? motion::MirrorClip(lib.clip(clip)) : lib.clip(clip);
@@ -168,27 +178,19 @@ TEST(LieSkillTest, SofasAreLainOnAlongTheSeat) {
         const bool fits = ClipFurnitureFrame(m, g, side, &p_clip, &yaw_clip, &dz);
         EXPECT_EQ(fits, IsSofaClip(m) && m.meta().mirrored == (side < 0)) << m.meta().name;
         if (!fits || std::abs(dz) > kMaxClipHeightMismatch) continue;
-        const auto place =
-            ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
-        humanoid::HumanoidPose pose = place.Apply(m.FramePose(m.num_frames() - 1));
+        humanoid::HumanoidPose pose = PlacedEnd(m, g, p_clip, yaw_clip, dz);
         humanoid::BodyStates b;
         humanoid::ForwardKinematics(model, pose, scratch.get(), &b);
         Eigen::Vector3d pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
-        const auto& seat_part = sofa.parts[g.part_index(kSeatPart)];
-        EXPECT_LT((scene::NearestPointOnPart(seat_part, pelvis) - pelvis).norm(), 0.2)
-            << m.meta().name;
+        EXPECT_LT(DistanceToParts(sofa, {g.part_index(kSeatPart)}, pelvis), 0.2) << m.meta().name;
         // The same pose lying on the target.
         pose.root_pos += lie->target(i) - pelvis;
         humanoid::ForwardKinematics(model, pose, scratch.get(), &b);
         pelvis = humanoid::ContactJointPosition(b, humanoid::kCjPelvis);
         const Eigen::Vector3d head = humanoid::ContactJointPosition(b, humanoid::kCjHead);
-        double head_d = 1e9;
-        for (const char* arm : {"left arm", "right arm"})
-          for (int k : g.part_indices(arm))
-            head_d =
-                std::min(head_d, (scene::NearestPointOnPart(sofa.parts[k], head) - head).norm());
         EXPECT_LT((pelvis - lie->target(i)).norm(), 1e-9);
-        EXPECT_LT(head_d, 0.2) << m.meta().name << " on a seat " << 2 * half << " m wide";
+        EXPECT_LT(DistanceToParts(sofa, arms, head), 0.2)
+            << m.meta().name << " on a seat " << 2 * half << " m wide";
         ++checked;
       }
     }

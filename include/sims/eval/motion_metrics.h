@@ -38,6 +38,8 @@ class FootSlidingMeter {
   explicit FootSlidingMeter(double contact_height = 0.08) : contact_height_(contact_height) {}
   /// Counts one foot's move from `a` to `b` over `dt` seconds.
   void Add(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double dt);
+  /// Counts both feet over every consecutive frame pair of a recorded motion.
+  void AddRecord(const io::MotionRecord& record);
   /// The figures so far.
   FootSliding Result() const;
 
