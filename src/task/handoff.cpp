@@ -1,9 +1,12 @@
 #include "sims/task/handoff.h"
 
 #include <cmath>
+#include <map>
+#include <mutex>
 
 #include "sims/core/config.h"
 #include "sims/core/error.h"
+#include "sims/core/paths.h"
 
 namespace sims::task {
 
@@ -160,6 +163,31 @@ std::vector<HandoffState> LoadHandoffStates(const std::filesystem::path& path) {
     out.push_back(std::move(s));
   }
   return out;
+}
+
+std::shared_ptr<const std::vector<HandoffState>> SharedHandoffStates(
+    const std::vector<std::string>& files) {
+  std::vector<std::filesystem::path> paths;
+  std::string key;
+  for (const std::string& file : files) {
+    std::filesystem::path path = file;
+    if (path.is_relative() && !std::filesystem::exists(path)) path = ProjectRoot() / path;
+    paths.push_back(std::filesystem::absolute(path).lexically_normal());
+    key += paths.back().string() + '\n';
+  }
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const std::vector<HandoffState>>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[key];
+  if (!slot) {
+    auto states = std::make_shared<std::vector<HandoffState>>();
+    for (const auto& path : paths) {
+      const std::vector<HandoffState> part = LoadHandoffStates(path);
+      states->insert(states->end(), part.begin(), part.end());
+    }
+    slot = std::move(states);
+  }
+  return slot;
 }
 
 }  // namespace sims::task

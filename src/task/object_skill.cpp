@@ -12,10 +12,13 @@
 #include "sims/humanoid/features.h"
 #include "sims/scene/builtin.h"
 #include "sims/scene/contact_targets.h"
+#include "sims/task/handoff.h"
 
 namespace sims::task {
 
 namespace {
+// Hand-off states drawn before a start falls back to a reference clip.
+constexpr int kHandoffDraws = 16;
 // Free floor: the precomputed height may be this high (rugs) and must be so around a point.
 constexpr double kFloorTolerance = 0.05;
 
@@ -59,6 +62,9 @@ void ObjectParams::Validate() const {
           "a share in [0, 1]");
   Require(wide_near_share >= 0 && wide_near_share + precise_near_share <= 1, "wide_near_share",
           "a share in [0, 1 − precise_near_share]");
+  Require(handoff_share >= 0 && handoff_share <= 1, "handoff_share", "a share in [0, 1]");
+  Require(handoff_share == 0 || !handoff_states.empty(), "handoff_states",
+          "hand-off state files (eval_policy --end-states) when handoff_share > 0");
 }
 
 scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
@@ -230,6 +236,15 @@ ObjectSkill::ObjectSkill(const SkillConfig& config, const SkillContext& context)
   initial.level = config.object.spawn_curriculum ? 0.0 : 1.0;
   env_.assign(n, initial);
   override_.assign(n, -1);
+  // Only resets draw them (a story's skill begins where the story is).
+  handoff_ = config.object.handoff_share > 0 ? SharedHandoffStates(config.object.handoff_states)
+                                             : std::make_shared<const std::vector<HandoffState>>();
+}
+
+const std::vector<HandoffState>& ObjectSkill::handoff_states() const { return *handoff_; }
+
+std::string ObjectSkill::start_label(int env_id) const {
+  return env_[env_id].handoff ? "handoff" : "";
 }
 
 void ObjectSkill::SetSpawnLevel(int env_id, double level) {
@@ -363,6 +378,21 @@ void ObjectSkill::SampleTask(int, Rng&) {}
 
 bool ObjectSkill::ReferenceInit(int, Rng&, sim::InitialState*) { return false; }
 
+bool ObjectSkill::HandoffInit(int env_id, Rng& rng, sim::InitialState* init) {
+  // A few draws: states from another seat height or depth do not fit this object.
+  for (int attempt = 0; attempt < kHandoffDraws; ++attempt) {
+    const HandoffState& s = (*handoff_)[rng.UniformInt(static_cast<int64_t>(handoff_->size()))];
+    const std::optional<humanoid::HumanoidPose> pose = PlaceHandoffState(s, geometry(env_id));
+    if (!pose) continue;
+    init->pose = *pose;
+    init->history.clear();
+    init->reference = false;
+    SetStyle(env_id, DrawReferenceStyle(rng));
+    return true;
+  }
+  return false;
+}
+
 bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
   return FreeAt(*context_.height_grid, p, radius);
 }
@@ -395,8 +425,9 @@ void ObjectSkill::DefaultInit(int env_id, Rng& rng, sim::InitialState* init) {
 
 void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* init) {
   // The curriculum learns from the episode that just ended (default starts only: reference
-  // starts begin next to the object whatever the level).
-  if (config_.object.spawn_curriculum && env_[env_id].started && !env_[env_id].reference) {
+  // and hand-off starts begin on or next to the object whatever the level).
+  if (config_.object.spawn_curriculum && env_[env_id].started && !env_[env_id].reference &&
+      !env_[env_id].handoff) {
     const double step = config_.object.spawn_curriculum_step;
     const bool done = env_[env_id].hold >= config_.success_hold_steps;
     env_[env_id].level = NextCurriculumLevel(env_[env_id].level, done, step);
@@ -409,9 +440,15 @@ void ObjectSkill::SampleInitialState(int env_id, Rng& rng, sim::InitialState* in
   SampleTask(env_id, rng);
   const bool try_reference =
       context_.motions && !ReferenceClips().empty() && rng.Bernoulli(config_.reference_init_prob);
-  if (!(try_reference && ReferenceInit(env_id, rng, init))) DefaultInit(env_id, rng, init);
+  // The share is drawn only when there are states, so configs without them keep their streams.
+  const bool handoff = try_reference && !handoff_->empty() &&
+                       rng.Bernoulli(config_.object.handoff_share) &&
+                       HandoffInit(env_id, rng, init);
+  if (!handoff && !(try_reference && ReferenceInit(env_id, rng, init)))
+    DefaultInit(env_id, rng, init);
   env_[env_id].started = true;
   env_[env_id].reference = init->reference;
+  env_[env_id].handoff = handoff;
 }
 
 double NextCurriculumLevel(double level, bool done, double step) {
@@ -517,7 +554,11 @@ void ObjectState::Serialize(StateArchive* a, int num_objects) {
   a->Reals("anchor", &anchor_W);
   a->Real("level", &level);
   a->Flag("started", &started);
-  a->Flag("reference", &reference);
+  // Once the flag "reference" (0/1), which older snapshots hold; 2 is a hand-off start.
+  int start = reference ? 1 : handoff ? 2 : 0;
+  a->Int("start", &start, 0, 2);
+  reference = start == 1;
+  handoff = start == 2;
 }
 
 void ObjectSkill::SerializeTaskState(int, StateArchive*) {}

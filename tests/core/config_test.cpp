@@ -70,6 +70,32 @@ TEST(ConfigTest, VisitRestTakesTheUnnamedKeysAndWritesThemBack) {
   EXPECT_EQ(ConfigToJson(clash), (nlohmann::json{{"num_envs", 8}}));
 }
 
+// A field renamed after files were written with its old name (ObjectParams' hand-off keys).
+struct Renamed {
+  double share = 0;
+  template <class A>
+  void Serialize(A* a) {
+    a->Visit(SIMS_NVP(share));
+    a->VisitRenamed("old_share", SIMS_NVP(share));
+  }
+};
+
+TEST(ConfigTest, RenamedFieldsReadTheOldNameAndWriteTheNew) {
+  EXPECT_EQ(ConfigFromJson<Renamed>({{"old_share", 0.35}}, "test").share, 0.35);
+  EXPECT_EQ(ConfigFromJson<Renamed>({{"share", 0.5}}, "test").share, 0.5);
+  Renamed r;
+  r.share = 0.35;
+  EXPECT_EQ(ConfigToJson(r), (nlohmann::json{{"share", 0.35}}));
+  try {
+    (void)ConfigFromJson<Renamed>({{"share", 0.5}, {"old_share", 0.35}}, "f.json");
+    FAIL() << "both names were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("old_share"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("f.json"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)ConfigFromJson<Renamed>({{"old_share", "x"}}, "test"), Error);
+}
+
 TEST(ConfigTest, DefaultsSurviveEmptyObject) {
   const Outer o = ConfigFromJson<Outer>(nlohmann::json::object(), "test");
   EXPECT_EQ(o.num_envs, 8);

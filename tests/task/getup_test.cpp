@@ -610,7 +610,7 @@ TEST(GetUpSkillTest, RisenSeatStartsSucceedByHoldingStill) {
   for (int i = 0; i < n; ++i) EXPECT_EQ(completed_at[i], c.success_hold_steps) << "env " << i;
 }
 
-// Hand-off starts (getup_handoff_states): a recorded state lands on the env's own object at
+// Hand-off starts (handoff_states): a recorded state lands on the env's own object at
 // its place relative to the seat's front edge; states that fit no object leave the clips.
 TEST(GetUpSkillTest, HandoffStartsRestOnTheEnvsObject) {
   SkillConfig c = GetUpConfig();
@@ -645,8 +645,8 @@ TEST(GetUpSkillTest, HandoffStartsRestOnTheEnvsObject) {
   SaveHandoffStates(states, dir / "chairs.json");
   SaveHandoffStates(beds, dir / "beds.json");
 
-  c.getup.handoff_share = 1.0;
-  c.getup.handoff_states = {(dir / "chairs.json").string()};
+  c.object.handoff_share = 1.0;
+  c.object.handoff_states = {(dir / "chairs.json").string()};
   auto s = MakeSkillEnv(c, n);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
   ASSERT_EQ(getup->handoff_states().size(), states.size());
@@ -664,12 +664,12 @@ TEST(GetUpSkillTest, HandoffStartsRestOnTheEnvsObject) {
     EXPECT_LE(s.env->pose(i).root_pos.z(), humanoid::kDefaultRootHeight + 0.05 + 1e-4);
   }
 
-  c.getup.handoff_states = {(dir / "beds.json").string()};
+  c.object.handoff_states = {(dir / "beds.json").string()};
   auto fallback = MakeSkillEnv(c, n);
   auto* clips = dynamic_cast<GetUpSkill*>(fallback.setup.skill.get());
   for (int i = 0; i < n; ++i) EXPECT_EQ(clips->start(i), GetUpSkill::kSeatStart) << "env " << i;
 
-  c.getup.handoff_states.clear();
+  c.object.handoff_states.clear();
   EXPECT_THROW(ValidateConfig(c, "getup config"), Error);
 }
 

@@ -8,6 +8,7 @@
 
 #include "sims/motion/mirror.h"
 #include "sims/scene/contact_targets.h"
+#include "sims/task/handoff.h"
 #include "task/task_test_util.h"
 
 namespace sims::task {
@@ -203,6 +204,72 @@ TEST(LieSkillTest, SofasAreLainOnAlongTheSeat) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("bed or sofa"), std::string::npos) << e.what();
   }
+}
+
+// Lie from where sit ends (handoff_states): in stories most lies follow a sit on the same bed
+// or sofa. A sit state recorded on each bed starts the episodes on the env's bed at its place
+// relative to the mattress's head end, labelled "handoff" (neither a clip nor a default start,
+// so the spawn curriculum ignores it), and the label survives a snapshot.
+TEST(LieSkillTest, StartsFromSitEndStatesOnTheBed) {
+  SkillConfig c = LieConfig();
+  c.reference_init_prob = 1.0;
+  c.object.spawn_curriculum = true;
+  c.success_hold_steps = 2;
+  const int n = 4;
+  // Seated on the foot end, where sit's bed target is: 0.3 m from the mattress's foot edge.
+  std::vector<HandoffState> states;
+  std::vector<Eigen::Vector3d> p_AP;
+  {
+    auto plain = MakeSkillEnv(c, n);
+    auto* lie = dynamic_cast<LieSkill*>(plain.setup.skill.get());
+    for (const ObjectGeometry& g : lie->objects()) {
+      const scene::Aabb& m = g.part_local(kMattressPart);
+      const Eigen::Vector3d a = HandoffAnchor(std::string(kMattressPart), m);
+      const Eigen::Vector3d p_O(m.max.x() - 0.3, m.center().y(), m.max.z() + 0.1);
+      p_AP.push_back(p_O - a);
+      states.push_back(MakeHandoffState("sit", std::string(kMattressPart), g,
+                                        PoseAt(g.ToWorld(p_O), g.yaw), true));
+    }
+  }
+  const auto dir = sims::testing::TempDir("lie_handoff");
+  SaveHandoffStates(states, dir / "sit_on_beds.json");
+  c.object.handoff_share = 1.0;
+  c.object.handoff_states = {(dir / "sit_on_beds.json").string()};
+  auto s = MakeSkillEnv(c, n);
+  auto* lie = dynamic_cast<LieSkill*>(s.setup.skill.get());
+  ASSERT_EQ(lie->handoff_states().size(), states.size());
+  for (int round = 0; round < 3; ++round) {
+    for (int i = 0; i < n; ++i) {
+      ASSERT_TRUE(lie->handoff_start(i)) << "env " << i;
+      EXPECT_FALSE(lie->reference_start(i));
+      EXPECT_EQ(lie->start_label(i), "handoff");
+      const ObjectGeometry& g = lie->geometry(i);
+      const scene::Aabb& m = g.part_local(kMattressPart);
+      const Eigen::Vector3d rel =
+          g.X_WO.inverse() * s.env->pose(i).root_pos - HandoffAnchor(std::string(kMattressPart), m);
+      // The two beds differ in length by less than the placement's 0.1 m, so either state fits.
+      const bool fits = std::any_of(p_AP.begin(), p_AP.end(), [&](const Eigen::Vector3d& q) {
+        return std::abs(rel.x() - q.x()) < 1e-4 && std::abs(rel.y() - q.y()) < 1e-4;
+      });
+      EXPECT_TRUE(fits) << "env " << i << " at " << rel.transpose();
+      // Completing a hand-off episode leaves the spawn level where it was.
+      s.env->SetState(i, PoseAt(lie->target(i), g.yaw));
+      for (int k = 0; k < c.success_hold_steps; ++k) lie->Step(ViewOf(*s.env, i));
+      s.env->ResetEnv(i);
+      EXPECT_EQ(lie->spawn_level(i), 0.0) << "env " << i;
+    }
+  }
+  // A snapshot keeps the start kind; a clip start restored over it clears the label.
+  const std::vector<double> saved = lie->SaveEnvState(0);
+  c.object.handoff_share = 0.0;
+  auto clips = MakeSkillEnv(c, 1);
+  auto* other = dynamic_cast<LieSkill*>(clips.setup.skill.get());
+  EXPECT_FALSE(other->handoff_start(0));
+  EXPECT_EQ(other->start_label(0), "");
+  other->LoadEnvState(0, saved);
+  EXPECT_TRUE(other->handoff_start(0));
+  EXPECT_FALSE(other->reference_start(0));
+  EXPECT_EQ(other->start_label(0), "handoff");
 }
 
 }  // namespace

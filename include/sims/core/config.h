@@ -53,6 +53,8 @@ struct IsSerializable : std::false_type {};
 struct ProbeArchive {
   template <typename U>
   void Visit(const NameValue<U>&) {}
+  template <typename U>
+  void VisitRenamed(const char*, const NameValue<U>&) {}
 };
 template <typename T>
 struct IsSerializable<
@@ -114,6 +116,17 @@ class JsonReadArchive {
     } catch (const FieldError& e) {
       throw e.WithPrefix(nv.name);
     }
+  }
+
+  /// Reads a field's former name `old_name` into nv (files written before the rename); giving
+  /// both names is an error. Call it after Visit(nv).
+  template <typename T>
+  void VisitRenamed(const char* old_name, const NameValue<T>& nv) {
+    seen_.insert(old_name);
+    if (!j_.is_object() || !j_.contains(old_name)) return;
+    if (j_.contains(nv.name))
+      throw FieldError(old_name, std::string("only its new name '") + nv.name + "'", "both names");
+    Visit(MakeNameValue(old_name, nv.value));
   }
 
   /// Copies every key no Visit() has named so far into `rest` (an object) and counts them as
@@ -222,6 +235,10 @@ class JsonWriteArchive {
   void Visit(const NameValue<T>& nv) {
     (*j_)[nv.name] = Write(*nv.value);
   }
+
+  /// Former names are read only: the field is written under its new name.
+  template <typename T>
+  void VisitRenamed(const char*, const NameValue<T>&) {}
 
   /// Writes the keys of `rest` beside the named fields (VisitRest's read side); a named field
   /// wins over a rest key of the same name.

@@ -5,8 +5,9 @@
 // seat, lying askew), not in a get-up clip's seated pose. Over `eval_story --stories 30` the
 // bundled get-up fell in 47 of 73 keyframes that followed a sit (34 of 43 after a sit that
 // timed out, with the head at ~0.67 m), while it rose in 21 of 26 clip-seated evaluation
-// trials. `eval_policy --end-states F` records such states; get-up's getup_handoff_states
-// trains from them (a share of its reference starts).
+// trials. `eval_policy --end-states F` records such states; an object skill's handoff_states
+// trains from them (a share of its reference starts): get-up from sit and lie end states, lie
+// from sit end states (in stories most lie keyframes follow a sit on the same bed or sofa).
 //
 // Frames: O is the object frame (yaw-only; a seat's front is +x, a bed's headboard at −x). A
 // state is stored with the part's object-frame box; its anchor A is a seat's front-edge
@@ -17,6 +18,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,5 +61,11 @@ void SaveHandoffStates(const std::vector<HandoffState>& states, const std::files
 
 /// Reads a file written by SaveHandoffStates; throws sims::Error naming the file and field.
 std::vector<HandoffState> LoadHandoffStates(const std::filesystem::path& path);
+
+/// The states of all `files` in order (a relative path missing from the working directory is
+/// the project root's), read once per process per list and shared read-only by every skill
+/// instance (each story of a batch builds its own).
+std::shared_ptr<const std::vector<HandoffState>> SharedHandoffStates(
+    const std::vector<std::string>& files);
 
 }  // namespace sims::task

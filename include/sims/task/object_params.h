@@ -44,6 +44,14 @@ struct ObjectParams {
   /// Share of r_near paid by the wide kernel exp(−Σ), added to the skill's own (lie 0.5): reach
   /// policies left the hand 0.5–0.7 m below high targets, where exp(−10Σ) is ~0.01 and flat.
   double wide_near_share = 0;
+  /// Hand-off state files (task/handoff.h: where another skill's policy left the character on
+  /// furniture, recorded by `eval_policy --end-states`), e.g. get-up from where sit and lie
+  /// end, lie from where sit ends; a relative path missing from the working directory is taken
+  /// from the project root; [] = none.
+  std::vector<std::string> handoff_states;
+  /// Share of the reference starts taken from the hand-off states, placed on the env's object
+  /// when one fits it (else a reference start as usual); labelled "handoff".
+  double handoff_share = 0;
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -64,6 +72,11 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(max_contact_force));
     a->Visit(SIMS_NVP(precise_near_share));
     a->Visit(SIMS_NVP(wide_near_share));
+    a->Visit(SIMS_NVP(handoff_states));
+    a->Visit(SIMS_NVP(handoff_share));
+    // Get-up's names from when only get-up had hand-off starts (its checkpoints and policies).
+    a->VisitRenamed("getup_handoff_states", SIMS_NVP(handoff_states));
+    a->VisitRenamed("getup_handoff_share", SIMS_NVP(handoff_share));
   }
   /// Checks ranges.
   void Validate() const;

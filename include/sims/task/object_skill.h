@@ -15,6 +15,7 @@
 // the object's facing (+x) direction (2).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,8 @@
 #include "sims/task/skill.h"
 
 namespace sims::task {
+
+struct HandoffState;
 
 /// Spacing of the training-ground grid (m): far enough that envs never see a neighbour.
 inline constexpr double kTrainingGroundSpacing = 12.0;
@@ -134,6 +137,7 @@ struct ObjectState {
   double level = 1;                                    ///< Spawn-curriculum level in [0, 1].
   bool started = false;                                ///< An episode ran.
   bool reference = false;                              ///< It began from a clip state.
+  bool handoff = false;  ///< It began from a hand-off state (ObjectParams::handoff_states).
 
   /// Lists the fields; `num_objects` bounds `object`.
   void Serialize(StateArchive* a, int num_objects);
@@ -182,6 +186,13 @@ class ObjectSkill : public Skill {
   double curriculum_level(int env_id) const override;
   /// Whether env i's episode began from a reference (clip) state.
   bool reference_start(int env_id) const { return env_[env_id].reference; }
+  /// Whether env i's episode began from a hand-off state (neither a clip nor a default start).
+  bool handoff_start(int env_id) const { return env_[env_id].handoff; }
+  /// "handoff" for an episode begun from a hand-off state, else "" (skills with labels of
+  /// their own override it).
+  std::string start_label(int env_id) const override;
+  /// The hand-off states (handoff_states; loaded only when handoff_share > 0).
+  const std::vector<HandoffState>& handoff_states() const;
   /// Latest start time (s) of reference starts from library clip `clip` (−1: not used).
   double pre_contact_time(int clip) const;
   /// Net contact force on the humanoid (N) after the last physics step of `view`.
@@ -215,6 +226,8 @@ class ObjectSkill : public Skill {
   virtual void SampleTask(int env_id, Rng& rng);
   /// Reference-state init consistent with the env's object; false = no suitable clip.
   virtual bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init);
+  /// A hand-off state placed on the env's object (a few draws; false when none fits it).
+  virtual bool HandoffInit(int env_id, Rng& rng, sim::InitialState* init);
   /// Standing at a random heading, spawn_min..spawn_max beyond the object's footprint.
   virtual void DefaultInit(int env_id, Rng& rng, sim::InitialState* init);
   /// Writes or reads the derived skill's own per-env state (after the ObjectState).
@@ -252,6 +265,7 @@ class ObjectSkill : public Skill {
   std::vector<ObjectState> env_;     // per env
   std::vector<int> override_;        // per env: SetObjectOverride (a setting, not snapshotted)
   std::vector<double> pre_contact_;  // per library clip (−1: not a reference clip)
+  std::shared_ptr<const std::vector<HandoffState>> handoff_;  // shared by instances (cache)
 };
 
 /// A random position (m) along a wide seat (sofas) so envs do not all use the middle; 0 for

@@ -28,8 +28,6 @@ constexpr double kLyingReach = 1.0;
 constexpr double kFloorMargin = 0.3;
 // The first quarter of a get-up clip is still seated or lying.
 constexpr double kSeatedFraction = 0.25;
-// Hand-off states drawn before a reference start falls back to a clip.
-constexpr int kHandoffDraws = 16;
 
 // The value `make()` gives for `key`, computed once per process and then shared read-only
 // (every env of every skill instance, each story of a batch). Keys are per value type.
@@ -48,12 +46,6 @@ std::shared_ptr<const std::vector<FallState>> CachedFallStates(int count) {
                                         [&] { return GenerateFallStates(count, kFallSeed); });
 }
 
-std::shared_ptr<const std::vector<HandoffState>> CachedHandoffStates(
-    const std::filesystem::path& path) {
-  return Cached<std::vector<HandoffState>>(
-      std::filesystem::absolute(path).lexically_normal().string(),
-      [&] { return LoadHandoffStates(path); });
-}
 }  // namespace
 
 std::vector<FallState> GenerateFallStates(int count, uint64_t seed) {
@@ -117,9 +109,6 @@ void GetUpParams::Validate() const {
   Require(backplay_end >= 0 && backplay_end <= 1, "getup_backplay_end",
           "a fraction in [0, 1] (0 = no backplay)");
   Require(backplay_step > 0 && backplay_step <= 1, "getup_backplay_step", "a step in (0, 1]");
-  Require(handoff_share >= 0 && handoff_share <= 1, "getup_handoff_share", "a share in [0, 1]");
-  Require(handoff_share == 0 || !handoff_states.empty(), "getup_handoff_states",
-          "hand-off state files (eval_policy --end-states) when getup_handoff_share > 0");
 }
 
 GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
@@ -139,16 +128,6 @@ GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
     }
   }
   fall_states_ = CachedFallStates(config.getup.fall_states);
-  // Only resets draw them (a story's get-up begins where the story is), and a relative path
-  // that is not under the working directory is the project's (as motion manifests).
-  if (config.getup.handoff_share > 0) {
-    for (const std::string& file : config.getup.handoff_states) {
-      std::filesystem::path path = file;
-      if (path.is_relative() && !std::filesystem::exists(path)) path = ProjectRoot() / path;
-      const auto states = CachedHandoffStates(path);
-      handoff_.insert(handoff_.end(), states->begin(), states->end());
-    }
-  }
   // The feet goal's height: foot origins of the standing default pose.
   humanoid::MjDataPtr scratch = humanoid::MakeData(context.humanoid->model());
   humanoid::BodyStates b;
@@ -235,24 +214,12 @@ bool GetUpSkill::ClearFloorPoint(int i, double reach, Rng& rng, Eigen::Vector2d*
 }
 
 bool GetUpSkill::HandoffInit(int i, Rng& rng, sim::InitialState* init) {
-  // A few draws: states from another seat height or depth do not fit this object.
-  for (int attempt = 0; attempt < kHandoffDraws; ++attempt) {
-    const HandoffState& s = handoff_[rng.UniformInt(static_cast<int64_t>(handoff_.size()))];
-    const std::optional<humanoid::HumanoidPose> pose = PlaceHandoffState(s, geometry(i));
-    if (!pose) continue;
-    init->pose = *pose;
-    init->history.clear();
-    init->reference = false;
-    getup_[i].start = kHandoffStart;
-    SetStyle(i, DrawReferenceStyle(rng));
-    return true;
-  }
-  return false;
+  if (!ObjectSkill::HandoffInit(i, rng, init)) return false;
+  getup_[i].start = kHandoffStart;
+  return true;
 }
 
 bool GetUpSkill::ReferenceInit(int i, Rng& rng, sim::InitialState* init) {
-  if (!handoff_.empty() && rng.Bernoulli(config_.getup.handoff_share) && HandoffInit(i, rng, init))
-    return true;
   const bool floor = !floor_clips_.empty() &&
                      (furniture_clips_.empty() || rng.Bernoulli(config_.getup.floor_clip_share));
   if (floor) {

@@ -6,9 +6,9 @@
 //     on the env's seat or bed by their stored furniture parameters; floor clips (clips with no
 //     furniture parameters: supine or prone on the floor) at a free floor point clear of the
 //     furniture, a getup_floor_clip_share of the reference starts, with the fall states' grace.
-//   hand-off: a getup_handoff_share of the reference starts from getup_handoff_states, where
-//     the sit and lie policies ended their episodes (task/handoff.h), placed on the env's
-//     object when one fits (else a clip start); stories start get-ups there.
+//   hand-off: a handoff_share of the reference starts from handoff_states, where the sit and
+//     lie policies ended their episodes (task/handoff.h, ObjectSkill's hand-off starts),
+//     placed on the env's object when one fits (else a clip start); stories start get-ups there.
 //   default: one of getup_fall_states precomputed fall states (ASE getup: a random root
 //     orientation and random actions U[−0.5, 0.5] held for 300 physics steps at 120 Hz, i.e.
 //     ASE's 150 steps at 60 Hz), placed where every body lies on free floor, with
@@ -133,8 +133,6 @@ class GetUpSkill : public ObjectSkill {
   bool floor_start(int env_id) const {
     return getup_[env_id].start == kFloorClipStart || getup_[env_id].start == kFallStart;
   }
-  /// The hand-off states (getup_handoff_states; loaded only when getup_handoff_share > 0).
-  const std::vector<HandoffState>& handoff_states() const { return handoff_; }
   /// The precomputed fall states.
   const std::vector<FallState>& fall_states() const { return *fall_states_; }
   /// Standing upright (pelvis and head heights of `params`, pelvis and torso up axes).
@@ -165,13 +163,13 @@ class GetUpSkill : public ObjectSkill {
  protected:
   bool Accepts(const ObjectGeometry& g) const override;
   bool ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) override;
+  /// ObjectSkill's, labelled kHandoffStart.
+  bool HandoffInit(int env_id, Rng& rng, sim::InitialState* init) override;
   void DefaultInit(int env_id, Rng& rng, sim::InitialState* init) override;
   void SerializeTaskState(int env_id, StateArchive* archive) override;
 
  private:
   void StartGetUp(int env_id, const humanoid::BodyStates& b);
-  // A start from a hand-off state that fits env i's object; false when none of the draws did.
-  bool HandoffInit(int env_id, Rng& rng, sim::InitialState* init);
   // A reference start time (s) in a clip of `duration` s for env i: the backplay window of the
   // floor or furniture level when backplay runs, else the first reference_max_fraction but at
   // most `max_fraction`.
@@ -185,7 +183,6 @@ class GetUpSkill : public ObjectSkill {
   double foot_height_ = 0.0;
   double head_height_ = 0.0;
   std::shared_ptr<const std::vector<FallState>> fall_states_;
-  std::vector<HandoffState> handoff_;
   std::vector<int> furniture_clips_, floor_clips_;  // library indices
   std::vector<GetUpState> getup_;                   // per env
 };

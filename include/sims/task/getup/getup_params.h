@@ -47,13 +47,6 @@ struct GetUpParams {
   /// of it when it did not, so the level settles where a third of the starts succeed (as the
   /// object skills' spawn curriculum).
   double backplay_step = 0.05;
-  /// Hand-off state files (task/handoff.h: where the sit and lie policies leave the character,
-  /// recorded by `eval_policy --end-states`); a relative path missing from the working
-  /// directory is taken from the project root; [] = none.
-  std::vector<std::string> handoff_states;
-  /// Share of the reference starts taken from the hand-off states, placed on the env's object
-  /// when one fits it (else a clip start as usual); labelled "handoff".
-  double handoff_share = 0;
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -67,8 +60,6 @@ struct GetUpParams {
     a->Visit(MakeNameValue("getup_reference_max_fraction", &reference_max_fraction));
     a->Visit(MakeNameValue("getup_backplay_end", &backplay_end));
     a->Visit(MakeNameValue("getup_backplay_step", &backplay_step));
-    a->Visit(MakeNameValue("getup_handoff_states", &handoff_states));
-    a->Visit(MakeNameValue("getup_handoff_share", &handoff_share));
   }
   /// Checks ranges.
   void Validate() const;
