@@ -471,12 +471,13 @@ Room MakeRoom(const std::string& id, const std::string& type, const RoomFrame& f
 // and a 1 m deep strip in front of it free, so any wall can carry a door in the house.
 //
 // Chairs at tables and desks stand pulled out, kChairGap between the seat's front and the
-// table's edge. Tucked in (0.07–0.12 m) there was no room to step between them and sit: over
-// `eval_story --stories 30 --seed 0` the sit policy sat on 12 of 43 such chairs (35 of 40 on
-// the free-standing sofas), and get-ups from them fell against the table.
+// table's edge. Tucked in (0.07–0.12 m) there was no room to step between them and sit, and
+// they blocked the tables: over `eval_story --stories 30 --seed 0` the sit policy sat on 12 of
+// 43 such chairs (37 of 46 sofas) and reached 0 of 27 tables; pulled out, 15 of 43 and 14 of 27.
 constexpr double kChairGap = 0.55;
 // Half a default chair's depth (FurnitureParams::depth 0.46 m): chair origins are centred.
 constexpr double kChairHalfDepth = 0.23;
+
 void FurnishBedroom(Scene* s, const std::string& id, const RoomFrame& f) {
   Add(s, id, f, Piece("bed"), 0.08 + 2.05 / 2, 3.9, 0);
   Add(s, id, f,

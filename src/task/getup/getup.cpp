@@ -2,14 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <map>
 #include <mutex>
 
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
-#include "sims/core/paths.h"
 #include "sims/humanoid/features.h"
 #include "sims/task/handoff.h"
 #include "sims/task/sit/sit.h"
