@@ -1,12 +1,11 @@
 #include "sims/task/handoff.h"
 
 #include <cmath>
-#include <map>
-#include <mutex>
 
 #include "sims/core/config.h"
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
+#include "task/cached.h"
 
 namespace sims::task {
 
@@ -175,19 +174,14 @@ std::shared_ptr<const std::vector<HandoffState>> SharedHandoffStates(
     paths.push_back(std::filesystem::absolute(path).lexically_normal());
     key += paths.back().string() + '\n';
   }
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const std::vector<HandoffState>>> cache;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = cache[key];
-  if (!slot) {
-    auto states = std::make_shared<std::vector<HandoffState>>();
+  return Cached<std::vector<HandoffState>>(key, [&] {
+    std::vector<HandoffState> states;
     for (const auto& path : paths) {
       const std::vector<HandoffState> part = LoadHandoffStates(path);
-      states->insert(states->end(), part.begin(), part.end());
+      states.insert(states.end(), part.begin(), part.end());
     }
-    slot = std::move(states);
-  }
-  return slot;
+    return states;
+  });
 }
 
 }  // namespace sims::task

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <mutex>
 
 #include "sims/core/error.h"
 #include "sims/core/parallel.h"
 #include "sims/humanoid/features.h"
 #include "sims/task/handoff.h"
 #include "sims/task/sit/sit.h"
+#include "task/cached.h"
 
 namespace sims::task {
 
@@ -26,18 +25,6 @@ constexpr double kLyingReach = 1.0;
 constexpr double kFloorMargin = 0.3;
 // The first quarter of a get-up clip is still seated or lying.
 constexpr double kSeatedFraction = 0.25;
-
-// The value `make()` gives for `key`, computed once per process and then shared read-only
-// (every env of every skill instance, each story of a batch). Keys are per value type.
-template <class Value, class Key, class Make>
-std::shared_ptr<const Value> Cached(const Key& key, Make make) {
-  static std::mutex mutex;
-  static std::map<Key, std::shared_ptr<const Value>> cache;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = cache[key];
-  if (!slot) slot = std::make_shared<const Value>(make());
-  return slot;
-}
 
 std::shared_ptr<const std::vector<FallState>> CachedFallStates(int count) {
   return Cached<std::vector<FallState>>(count,
