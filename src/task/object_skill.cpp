@@ -62,6 +62,8 @@ void ObjectParams::Validate() const {
           "a share in [0, 1]");
   Require(wide_near_share >= 0 && wide_near_share + precise_near_share <= 1, "wide_near_share",
           "a share in [0, 1 − precise_near_share]");
+  Require(near_facing_share >= 0 && near_facing_share <= 1, "near_facing_share",
+          "a share in [0, 1]");
   Require(handoff_share >= 0 && handoff_share <= 1, "handoff_share", "a share in [0, 1]");
   Require(handoff_share == 0 || !handoff_states.empty(), "handoff_states",
           "hand-off state files (eval_policy --end-states) when handoff_share > 0");
@@ -527,9 +529,16 @@ sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view, dou
   const double r_far = at_target ? 1.0
                                  : FarReward(e.anchor_W, root, view.pose->root_lin_vel.head<2>(),
                                              FacingOf(*view.pose), config_.target_speed);
-  const double r = kNearWeight * NearReward(goal_sum, wide_share + config_.object.wide_near_share,
-                                            config_.object.precise_near_share) +
-                   (1.0 - kNearWeight) * r_far;
+  double r_near = NearReward(goal_sum, wide_share + config_.object.wide_near_share,
+                             config_.object.precise_near_share);
+  const double facing_share = config_.object.near_facing_share;
+  if (facing_share > 0) {
+    const Eigen::Vector2d front = e.anchor_W - e.target_W.head<2>();
+    const double n = front.norm();
+    const double cos_front = n > 1e-9 ? FacingOf(*view.pose).dot(front / n) : 1.0;
+    r_near *= 1.0 - facing_share + facing_share * std::max(0.0, cos_front);
+  }
+  const double r = kNearWeight * r_near + (1.0 - kNearWeight) * r_far;
   return Finish(view, r, d < config_.object.contact_success_threshold);
 }
 

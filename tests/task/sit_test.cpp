@@ -383,6 +383,31 @@ TEST(SitSkillTest, PreciseNearShareSharpensTheNearReward) {
   EXPECT_NE(lie_error.find("0.5"), std::string::npos) << lie_error;
 }
 
+// near_facing_share pays that share of r_near only as the pelvis faces the seat's front: 0.15 m
+// above the target, facing out pays all of it, sideways or facing the back rest half (share 0.5).
+TEST(SitSkillTest, NearFacingShareRewardsFacingTheSeatsFront) {
+  SkillConfig c = SitConfig();
+  c.reference_init_prob = 0;
+  c.object.max_contact_force = 0;
+  c.object.near_facing_share = 0.5;
+  auto s = MakeSkillEnv(c, 1);
+  auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
+  const double yaw = sit->geometry(0).yaw;
+  const Eigen::Vector3d above = sit->target(0) + Eigen::Vector3d(0, 0, 0.15);
+  const double r_near = std::exp(-10 * 0.15 * 0.15);
+  const std::vector<std::pair<double, double>> cases = {
+      {0.0, 1.0}, {M_PI / 2, 0.5}, {M_PI, 0.5}, {M_PI / 3, 0.75}};
+  for (const auto& [turn, factor] : cases) {
+    s.env->SetState(0, PoseAt(above, yaw + turn));
+    const sim::TaskStepResult r = sit->Step(ViewOf(*s.env, 0));
+    EXPECT_NEAR(r.reward, 0.7 * r_near * factor + 0.3, 1e-5) << "turned " << turn;
+    EXPECT_TRUE(r.success);  // success stays positional
+  }
+  c.object.near_facing_share = -0.1;
+  const std::string error = sims::testing::ErrorOf([&] { c.object.Validate(); });
+  EXPECT_NE(error.find("near_facing_share"), std::string::npos) << error;
+}
+
 // training_scale_min/max widen the training ground's dimensions around the held-out bands:
 // chair seats (nominal 0.45 m) reach below 0.76× and above 1.24× but never into the bands.
 TEST(SitSkillTest, WideTrainingScaleKeepsOutOfTheHeldOutBands) {

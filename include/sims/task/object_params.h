@@ -44,6 +44,11 @@ struct ObjectParams {
   /// Share of r_near paid by the wide kernel exp(−Σ), added to the skill's own (lie 0.5): reach
   /// policies left the hand 0.5–0.7 m below high targets, where exp(−10Σ) is ~0.01 and flat.
   double wide_near_share = 0;
+  /// Share of r_near paid only as the pelvis faces the object's front (max(0, cos) between
+  /// its heading and the anchor's direction from the target; for seats): sit policies stood
+  /// astride narrow chairs and stools, the pelvis over the seat 0.35 m above its target, from
+  /// where no motion leads down (eval poses); 0 = off, the papers' position-only r_near.
+  double near_facing_share = 0;
   /// Hand-off state files (task/handoff.h: where another skill's policy left the character on
   /// furniture, recorded by `eval_policy --end-states`), e.g. get-up from where sit and lie
   /// end, lie from where sit ends; a relative path missing from the working directory is taken
@@ -71,6 +76,7 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(reference_window));
     a->Visit(SIMS_NVP(max_contact_force));
     a->Visit(SIMS_NVP(precise_near_share));
+    a->Visit(SIMS_NVP(near_facing_share));
     a->Visit(SIMS_NVP(wide_near_share));
     a->Visit(SIMS_NVP(handoff_states));
     a->Visit(SIMS_NVP(handoff_share));
