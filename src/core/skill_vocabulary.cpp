@@ -18,6 +18,8 @@ std::deque<SkillTraits> BuiltinSkills() {
   walk.flat_scene = true;  // trained on an empty floor: obstacles are the navigation's job
   walk.required = true;
   walk.timing = StoryTiming::kWalk;
+  // A walk from the bed after a get-up that timed out went nowhere, and the story with it.
+  walk.starts_standing = true;
   v.push_back(walk);
 
   SkillTraits sit;
@@ -32,6 +34,9 @@ std::deque<SkillTraits> BuiltinSkills() {
   lie.description = "lie down on a bed with the head on a pillow";
   lie.scripted = lie.affordance = lie.needs_object = true;
   lie.follow_up = "getup";
+  // The bundled lie policy lies down on 84 of 100 held-out beds from standing but from where
+  // the bundled sit left the character on beds and sofas on 15 of 97 (assets/policies/lie/).
+  lie.starts_standing = true;
   v.push_back(lie);
 
   SkillTraits reach;

@@ -162,8 +162,9 @@ struct StoryRunner::Impl {
   };
 
   // Where the character is in the story: the instruction, which attempt, and whether it runs the
-  // instruction's skill or the get-up after a fall.
-  enum class Phase { kAttempt, kRecover, kDone };
+  // instruction's skill, the get-up after a fall, or the get-up before a skill that starts
+  // standing.
+  enum class Phase { kPrepare, kAttempt, kRecover, kDone };
   struct RunState {
     const std::vector<Instruction>* instructions = nullptr;
     size_t k = 0;     // current instruction
@@ -171,6 +172,7 @@ struct StoryRunner::Impl {
     Phase phase = Phase::kDone;
     AttemptState current;
     Instruction recovery;  // the get-up instruction while recovering
+    Instruction prepare;   // the get-up instruction while preparing
     KeyframeOutcome out;   // outcome of the current instruction, being built
     StoryResult result;
     bool failed_before = false;
@@ -279,8 +281,9 @@ struct StoryRunner::Impl {
   // enough, time-out), with the goal error and a note.
   std::optional<Outcome> CheckAttempt(AttemptState* a, double* error, std::string* note) {
     const std::string& skill = a->in->skill;
-    // A get-up starts fallen: only its success or time-out ends it.
-    if (run.phase != Phase::kRecover && Fallen()) {
+    // A get-up starts fallen (or lying, before a skill that starts standing): only its success
+    // or time-out ends it.
+    if (run.phase == Phase::kAttempt && Fallen()) {
       *error = GoalError(skill, a->target);
       return Outcome::kFall;
     }
@@ -364,10 +367,14 @@ struct StoryRunner::Impl {
     std::string why;
     const auto o = CheckAttempt(&run.current, &err, &why);
     if (!o) return;
-    if (run.phase == Phase::kRecover)
+    if (run.phase == Phase::kRecover) {
       AfterRecovery(*o == Outcome::kSuccess);
-    else
+    } else if (run.phase == Phase::kPrepare) {
+      // Whatever the follow-up did (a fall ends it too), the keyframe's attempt starts now.
+      if (!StartAttempt()) StartInstruction();
+    } else {
       AfterAttempt(*o, err, why);
+    }
   }
 
   // Opens instructions in turn until one needs control steps or the story ends.
@@ -400,9 +407,31 @@ struct StoryRunner::Impl {
       }
       if (recorder) recorder->BeginKeyframe(note);
       run.attempt = 0;
-      if (StartAttempt()) return;
+      if (StartPreparation() || StartAttempt()) return;
     }
     Finish();
+  }
+
+  // A skill whose policy starts standing gets the character up first when it is not standing
+  // (the get-up's goal does not hold: seated, lying, still down after a get-up that timed out),
+  // aimed at the previous keyframe's target; the keyframe's own attempt and time-out begin
+  // after it. False when there is nothing to run.
+  bool StartPreparation() {
+    const auto& instructions = *run.instructions;
+    if (run.k == 0 || !SkillTraitsOf(instructions[run.k].skill).starts_standing) return false;
+    const auto up = std::find_if(skills.begin(), skills.end(), [](const auto& s) {
+      return SkillTraitsOf(s.first).recovers_falls;
+    });
+    if (up == skills.end()) return false;
+    run.prepare = instructions[run.k - 1];
+    run.prepare.skill = up->first;
+    run.prepare.keyframe = -1;
+    std::string why;
+    if (!BeginAttempt(run.prepare, &run.current, &why) || run.current.skill->Accomplished(View()))
+      return false;
+    spdlog::debug("{}{} before keyframe {}", run.log_prefix, run.prepare.skill, run.k);
+    run.phase = Phase::kPrepare;
+    return true;
   }
 
   // Starts attempt run.attempt of the current instruction; false when it ended at once (the

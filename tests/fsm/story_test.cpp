@@ -64,6 +64,23 @@ const std::filesystem::path& TinyPolicySetWithSit() {
   return set;
 }
 
+// Walk, get-up, sit and lie policies (the sit and lie ones tiny, trained without clips).
+const std::filesystem::path& TinyPolicySetWithSitAndLie() {
+  static const std::filesystem::path set = [] {
+    const auto dir = TinyPolicySetWithGetUp().parent_path();
+    TinyPolicySetWithSit();
+    learning::TrainConfig c = sims::testing::TinyTrainConfig("lie");
+    c.skill.reference_init_prob = 0;
+    learning::TrainOptions o;
+    o.out_dir = dir / "lie";
+    learning::RunTraining(c, o);
+    std::ofstream(dir / "policies_sit_lie.json") << R"({"policies": {"walk": "walk/policy.pt",
+        "getup": "getup/policy.pt", "sit": "sit/policy.pt", "lie": "lie/policy.pt"}})";
+    return dir / "policies_sit_lie.json";
+  }();
+  return set;
+}
+
 // A walk instruction to world point p (keyframe 0).
 Instruction WalkTo(const Eigen::Vector3d& p) {
   Instruction in;
@@ -292,6 +309,61 @@ TEST(StoryRecoveryTest, AGetUpFromTheFloorWhileStandingSucceedsAtOnce) {
   EXPECT_EQ(r.keyframes[0].end_time, 0.0);
   EXPECT_EQ(r.keyframes[1].start_time, 0.0);
   EXPECT_EQ(skills_seen, std::vector<std::string>{"walk"});
+}
+
+// A lie or a walk (skills whose policies start standing) after a sit on the bed, or after a
+// get-up that timed out, runs the get-up first; after a walk the lie starts at once. Scripted:
+// the sit collapses (falls are not detected), the get-up holds the standing targets, which
+// cannot lift the collapsed body, so it runs to its time-out, and the lie or walk still gets
+// its own whole time-out.
+TEST(StoryPreparationTest, SkillsThatStartStandingGetUpFirst) {
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("bed"));
+  StoryOptions o;
+  o.skill_timeout_s = 1.0;
+  o.walk_timeout_s = 0.5;
+  o.fallen_head_height = 0;
+  o.fallen_pelvis_height = 0;
+  StoryRunner runner(scene, LoadPolicySet(TinyPolicySetWithSitAndLie()), o);
+  std::vector<std::string> skills_seen;
+  runner.SetActionOverride([&](const std::string& skill, const float*, float* a) {
+    if (skills_seen.empty() || skills_seen.back() != skill) skills_seen.push_back(skill);
+    const double standing[humanoid::kNumDofs] = {0};
+    if (skill == "sit")
+      std::fill(a, a + humanoid::kNumDofs, -1.0f);
+    else
+      runner.humanoid()->TargetsToAction(standing, a);
+  });
+  auto on_bed = [](const std::string& skill, int keyframe) {
+    Instruction in;
+    in.keyframe = keyframe;
+    in.skill = skill;
+    in.caption = skill;
+    in.object_name = "bed_0";
+    in.target.object = 0;
+    return in;
+  };
+  const Eigen::Vector3d start(2.0, 0, 0);
+  const auto r = runner.Run({on_bed("sit", 0), on_bed("lie", 1)}, start, M_PI, nullptr);
+  ASSERT_EQ(r.keyframes.size(), 2u);
+  EXPECT_EQ(skills_seen, (std::vector<std::string>{"sit", "getup", "lie"}));
+  const KeyframeOutcome& lie = r.keyframes[1];
+  EXPECT_NEAR(lie.end_time - lie.start_time, 2.0, 2.0 / 30.0) << "get-up and lie time-outs";
+  EXPECT_EQ(lie.falls, 0);
+
+  skills_seen.clear();
+  const auto direct = runner.Run({WalkTo(start), on_bed("lie", 1)}, start, M_PI, nullptr);
+  ASSERT_EQ(direct.keyframes.size(), 2u);
+  EXPECT_EQ(skills_seen, (std::vector<std::string>{"walk", "lie"}));
+  EXPECT_NEAR(direct.keyframes[1].end_time - direct.keyframes[1].start_time, 1.0, 2.0 / 30.0);
+
+  skills_seen.clear();
+  const auto again =
+      runner.Run({on_bed("sit", 0), on_bed("getup", 1), WalkTo(start)}, start, M_PI, nullptr);
+  ASSERT_EQ(again.keyframes.size(), 3u);
+  EXPECT_FALSE(again.keyframes[1].success);
+  EXPECT_EQ(skills_seen, (std::vector<std::string>{"sit", "getup", "walk"}));
+  const KeyframeOutcome& walk = again.keyframes[2];
+  EXPECT_NEAR(walk.end_time - walk.start_time, 1.5, 2.0 / 30.0) << "get-up and walk time-outs";
 }
 
 TEST_F(StoryRunnerTest, MissingSkillPolicyIsAClearError) {

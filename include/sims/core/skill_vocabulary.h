@@ -36,6 +36,9 @@ struct SkillTraits {
   bool contact_steps = false;   ///< Runs UniHSI chain-of-contact steps (ScenePlans).
   StoryTiming timing = StoryTiming::kObject;  ///< Story time-out and success-hold class.
   std::string follow_up;  ///< Skill that ends the posture it leaves (sit, lie → getup), or "".
+  /// Its policy starts from standing: stories run the get-up (the skill that recovers falls)
+  /// first when the character is not standing (after a sit, a lie, a get-up that timed out).
+  bool starts_standing = false;
 };
 
 /// Every known skill: the built-in ones in a fixed order (the planner's scripted skills first:
