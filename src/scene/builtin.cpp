@@ -486,7 +486,9 @@ constexpr double kDeskChairGap = 0.9;
 constexpr double kChairHalfDepth = 0.23;
 
 void FurnishBedroom(Scene* s, const std::string& id, const RoomFrame& f) {
-  Add(s, id, f, Piece("bed"), 0.08 + 2.05 / 2, 3.9, 0);
+  // Against the north wall (its inner face at 4.95): 0.4 m out, a get-up that left the bed on
+  // the wall side stayed wedged between them, and the walk after it went nowhere.
+  Add(s, id, f, Piece("bed"), 0.08 + 2.05 / 2, 4.95 - 0.03 - 1.4 / 2, 0);
   Add(s, id, f,
       Piece("cabinet",
             [](FurnitureParams& p) {
