@@ -301,15 +301,20 @@ struct StoryRunner::Impl {
     return Outcome::kTimeout;
   }
 
+  // The skill with a policy here that stands the character up (recovers_falls), or nullptr.
+  const std::string* GetUpSkill() const {
+    for (const auto& [name, skill] : skills)
+      if (SkillTraitsOf(name).recovers_falls) return &name;
+    return nullptr;
+  }
+
   // After a fall: get up where the character lies (if a get-up policy exists). False when
   // there is none or it cannot start; true when the get-up attempt runs.
   bool BeginRecovery() {
-    const auto it = std::find_if(skills.begin(), skills.end(), [](const auto& s) {
-      return SkillTraitsOf(s.first).recovers_falls;
-    });
-    if (it == skills.end()) return false;
+    const std::string* up = GetUpSkill();
+    if (!up) return false;
     run.recovery = Instruction();
-    run.recovery.skill = it->first;
+    run.recovery.skill = *up;
     run.recovery.target.point = env->pose(0).root_pos;
     run.recovery.target.has_point = true;
     std::string note;
@@ -419,12 +424,10 @@ struct StoryRunner::Impl {
   bool StartPreparation() {
     const auto& instructions = *run.instructions;
     if (run.k == 0 || !SkillTraitsOf(instructions[run.k].skill).starts_standing) return false;
-    const auto up = std::find_if(skills.begin(), skills.end(), [](const auto& s) {
-      return SkillTraitsOf(s.first).recovers_falls;
-    });
-    if (up == skills.end()) return false;
+    const std::string* up = GetUpSkill();
+    if (!up) return false;
     run.prepare = instructions[run.k - 1];
-    run.prepare.skill = up->first;
+    run.prepare.skill = *up;
     run.prepare.keyframe = -1;
     std::string why;
     if (!BeginAttempt(run.prepare, &run.current, &why) || run.current.skill->Accomplished(View()))
