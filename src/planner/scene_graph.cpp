@@ -33,6 +33,11 @@ EditCosts RetrievalCosts(const MatchCostConfig& config, const Vocabulary& vocab)
   c.substitute = [v, config](const GraphNode& a, const GraphNode& b) {
     std::optional<double> s = v->SubstitutionCost(a.category, b.category);
     if (!s) return std::numeric_limits<double>::infinity();
+    // An armchair may stand in for a sofa to sit on, not to lie on.
+    for (Skill u : a.uses)
+      if (!v->Affords(b.category, u)) return std::numeric_limits<double>::infinity();
+    for (Skill u : b.uses)
+      if (!v->Affords(a.category, u)) return std::numeric_limits<double>::infinity();
     bool shared = a.room_types.empty() || b.room_types.empty();
     for (const std::string& r : a.room_types)
       shared =
@@ -196,6 +201,8 @@ RequiredGraph BuildRequiredGraph(const LongScript& script, const std::vector<int
       it = node_of.emplace(key, out.graph.size()).first;
       out.graph.nodes.push_back(n);
     }
+    auto& uses = out.graph.nodes[it->second].uses;
+    if (std::find(uses.begin(), uses.end(), k.skill) == uses.end()) uses.push_back(k.skill);
     std::string room = room_of(k.segment);
     auto& types = out.graph.nodes[it->second].room_types;
     if (!room.empty() && std::find(types.begin(), types.end(), room) == types.end())

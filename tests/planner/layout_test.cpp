@@ -2,6 +2,7 @@
 // and binding of keyframes to objects.
 #include "sims/planner/layout.h"
 
+#include <cmath>
 #include <deque>
 #include <fstream>
 #include <set>
@@ -152,6 +153,41 @@ TEST(SceneGraphTest, RequiredGraphConsolidatesInstances) {
   }
   // Per-segment graphs keep only their own nodes.
   EXPECT_EQ(BuildRequiredGraph(ls, {0}).graph.size(), 2);
+}
+
+// A substitute must afford what the script does on the node: an armchair may stand in for a
+// sofa sat on, not for one lain on, so a script that lies on the sofa goes to the room with one
+// (the library's armchair once stood in for a sofa in a lie keyframe no policy could run).
+TEST(SceneGraphTest, SubstitutesMustAffordTheScriptsSkills) {
+  const LongScript sit = Script(R"({"scene": "study", "keyframes": [
+      {"skill": "loco", "furniture": "sofa"}, {"skill": "sit", "furniture": "sofa"}]})");
+  const LongScript lie = Script(R"({"scene": "study", "keyframes": [
+      {"skill": "loco", "furniture": "sofa"}, {"skill": "sit", "furniture": "sofa"},
+      {"skill": "liedown", "furniture": "sofa"}]})");
+  const GraphNode sofa_sat = BuildRequiredGraph(sit).graph.nodes.at(0);
+  const GraphNode sofa_lain = BuildRequiredGraph(lie).graph.nodes.at(0);
+  EXPECT_EQ(sofa_lain.uses, (std::vector<Skill>{Skill::kWalk, Skill::kSit, Skill::kLie}));
+  GraphNode armchair;
+  armchair.category = "armchair";
+  const EditCosts c = RetrievalCosts(MatchCostConfig{}, Vocabulary::Default());
+  EXPECT_TRUE(std::isfinite(c.substitute(sofa_sat, armchair)));
+  EXPECT_TRUE(std::isinf(c.substitute(sofa_lain, armchair)));
+  EXPECT_TRUE(std::isinf(c.substitute(armchair, sofa_lain)));
+
+  LayoutDatabase db;
+  for (const scene::Scene& s :
+       {Room("my_study", "study", 4, 4, {Box("armchair", "armchair_0", 2, 2, 0.8, 0.8, 0.8)}),
+        Room("my_living", "living room", 5, 4,
+             {Box("couch", "sofa_0", 2.5, 3.2, 2.0, 0.9, 0.8)})}) {
+    LayoutSource src;
+    src.kind = "scene_file";
+    src.path = src.name = s.name;
+    for (LayoutEntry& e : MakeLayoutEntries(s, src)) db.layouts.push_back(e);
+  }
+  const LayoutMatch m = MatchLayouts(lie, db);
+  ASSERT_EQ(m.bindings.size(), 3u);
+  EXPECT_EQ(m.bindings[2].object, "sofa_0");
+  EXPECT_EQ(m.layout.name, "my_living");
 }
 
 TEST(LayoutTest, PicksTheMatchingRoomAndBindsEveryKeyframe) {

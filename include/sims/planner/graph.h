@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "sims/planner/vocabulary.h"
+
 namespace sims::planner {
 
 /// One furniture node.
@@ -18,6 +20,9 @@ struct GraphNode {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< Bounds centre (world).
   std::string room;                                    ///< Room id ("" if none).
   std::vector<std::string> room_types;                 ///< Room type(s) of the node.
+  /// Skills a script performs on it (required graphs; scene graphs leave it empty): a
+  /// substitute must afford each.
+  std::vector<Skill> uses;
 };
 
 /// An undirected simple graph.
