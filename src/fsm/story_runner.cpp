@@ -375,7 +375,7 @@ struct StoryRunner::Impl {
     if (run.phase == Phase::kRecover) {
       AfterRecovery(*o == Outcome::kSuccess);
     } else if (run.phase == Phase::kPrepare) {
-      // Whatever the follow-up did (a fall ends it too), the keyframe's attempt starts now.
+      // Whatever the get-up did (a fall ends it too), the keyframe's attempt starts now.
       if (!StartAttempt()) StartInstruction();
     } else {
       AfterAttempt(*o, err, why);
