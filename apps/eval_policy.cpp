@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
   app.add_option("--reference-starts", o.reference_starts,
                  "share of trials started from motion clips as in training (0-1; default 0: "
                  "standing starts)");
+  app.add_option("--action-smoothing", o.action_smoothing,
+                 "run-time action smoothing: each action blended with the one before by this "
+                 "factor (0-0.9; default 0), as a policy set's action_smoothing does");
   app.add_flag("--training-starts", o.training_starts,
                "keep the skill's training start settings (get-up: the reach into the rise or "
                "the backplay window from level 0) instead of its evaluation ones");

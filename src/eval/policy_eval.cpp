@@ -19,6 +19,7 @@
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/loaders.h"
+#include "sims/sim/action_filter.h"
 #include "sims/task/handoff.h"
 #include "sims/task/object_skill.h"
 #include "sims/task/unified/unified.h"
@@ -234,6 +235,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
       {"control_dt", control_dt},
       {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
       {"reference_starts", reference_starts},
+      {"action_smoothing", action_smoothing},
       {"results", per}};
   if (!by_start.empty()) {
     nlohmann::json groups = nlohmann::json::object();
@@ -286,6 +288,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     ThrowInputError("--reference-starts", "reference_starts", "a share in [0, 1]",
                     std::to_string(o.reference_starts));
   sc.reference_init_prob = o.reference_starts;
+  sim::CheckActionSmoothing(o.action_smoothing, "--action-smoothing", "action_smoothing");
   if (!sc.style_conditioned && o.reference_starts == 0 && !o.style_eval) sc.motion.manifest.clear();
   if (info.configure_eval && !o.training_starts) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
@@ -335,6 +338,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.control_dt = env.control_dt();
   rep.ablation = o.ablation;
   rep.reference_starts = o.reference_starts;
+  rep.action_smoothing = o.action_smoothing;
   rep.results.resize(o.trials);
   // Each env runs trial after trial; env i's k-th trial is a fixed trial index.
   std::vector<int> trial(n_env, -1);
@@ -369,8 +373,10 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   };
   if (keep_ends)
     for (int i = 0; i < n_env; ++i) keep_last(i);
+  std::vector<sim::ActionFilter> filters(n_env, sim::ActionFilter(env.action_dim()));
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
+    filters[i].Reset();
     rep.results[trial[i]].start = setup.skill->start_label(i);
     if (object_skill && setup.context.scene) {
       TrialResult& t = rep.results[trial[i]];
@@ -409,6 +415,9 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   while (finished < o.trials) {
     o.ablation.Apply(segments, n_env, env.obs_dim(), env.observations());
     policy.Act(env.observations(), n_env, actions.data());
+    for (int i = 0; i < n_env; ++i)
+      filters[i].Apply(o.action_smoothing,
+                       actions.data() + static_cast<size_t>(i) * env.action_dim());
     env.Step(actions.data());
     for (int i = 0; i < n_env; ++i) {
       const std::array<Eigen::Vector3d, 2> now = feet(i);

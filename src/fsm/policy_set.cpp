@@ -2,6 +2,7 @@
 
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
+#include "sims/sim/action_filter.h"
 #include "sims/task/skill.h"
 
 namespace sims::fsm {
@@ -18,6 +19,11 @@ const std::filesystem::path& PolicySet::File(const std::string& skill) const {
                   have.empty() ? "no policies" : "only: " + have);
 }
 
+double PolicySet::Smoothing(const std::string& skill) const {
+  auto it = action_smoothing.find(skill);
+  return it == action_smoothing.end() ? 0.0 : it->second;
+}
+
 PolicySet LoadPolicySet(const std::filesystem::path& path) {
   const auto config = LoadConfig<PolicySetConfig>(path);
   PolicySet set;
@@ -30,6 +36,13 @@ PolicySet LoadPolicySet(const std::filesystem::path& path) {
       ThrowInputError(path.string(), "policies." + skill, "an existing policy file",
                       "'" + p.string() + "' does not exist");
     set.policies[skill] = p;
+  }
+  for (const auto& [skill, alpha] : config.action_smoothing) {
+    if (!config.policies.count(skill))
+      ThrowInputError(path.string(), "action_smoothing." + skill, "a skill listed under 'policies'",
+                      "no policy for '" + skill + "'");
+    sim::CheckActionSmoothing(alpha, path.string(), "action_smoothing." + skill);
+    set.action_smoothing[skill] = alpha;
   }
   return set;
 }

@@ -20,6 +20,7 @@
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/contact_targets.h"
+#include "sims/sim/action_filter.h"
 #include "sims/sim/env.h"
 #include "sims/sim/scene_physics.h"
 #include "sims/task/skill.h"
@@ -141,6 +142,10 @@ struct StoryRunner::Impl {
   std::shared_ptr<StoryTask> task;
   std::unique_ptr<sim::BatchedEnv> env;
   std::vector<float> action;
+  // Smooths what each skill's policy asks with what was applied before (PolicySet's
+  // action_smoothing); it runs across skill changes, so a smoothed skill starts from the last
+  // applied action.
+  sim::ActionFilter filter{humanoid::kNumDofs};
   int step = 0;
   io::MotionRecordBuilder* recorder = nullptr;
   StoryRunner::ActionOverride override_fn;
@@ -212,7 +217,9 @@ struct StoryRunner::Impl {
   }
 
   void ApplyAction() {
+    filter.Apply(policy_set.Smoothing(PendingSkill()), action.data());
     env->Step(action.data());
+    if (env->dones()[0]) filter.Reset();  // a blow-up put the character back
     ++step;
     if (recorder) recorder->AddFrame(env->pose(0));
   }
@@ -334,6 +341,7 @@ struct StoryRunner::Impl {
         Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Eigen::Vector3d::UnitZ());
     task->set_start(pose);
     env->Reset();
+    filter.Reset();
     ++step;  // the reset takes one control step, so motion frames stay on the clock
     if (recorder) recorder->AddFrame(env->pose(0));
   }
@@ -352,6 +360,7 @@ struct StoryRunner::Impl {
     task->set_start(pose);
     task->set_current(nullptr);
     env->Reset();
+    filter.Reset();
     if (recorder) recorder->AddFrame(env->pose(0));
     const std::string prefix = run.log_prefix;
     run = RunState();

@@ -1,5 +1,6 @@
 #include "sims/fsm/story_runner.h"
 
+#include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -549,6 +550,56 @@ TEST(StoryMixedWidthTest, EachPolicySeesItsOwnSkillsObservation) {
   ASSERT_EQ(r.keyframes.size(), 2u);
   EXPECT_GT(calls["walk"], 0);
   EXPECT_GT(calls["sit"], 0);
+}
+
+// A policy set's action_smoothing blends each action with the one applied before: a scripted
+// walk that flips the elbow's target between −0.4 and −1.2 rad every step moves it far less with
+// α = 0.5 (its targets swing a third as far, (1 − α)/(1 + α); the arm, slower than 30 Hz, about
+// two thirds as far); smoothing for a skill the set has no policy for, or beyond
+// kMaxActionSmoothing, is the set file's error.
+TEST(StoryActionSmoothingTest, SmoothingDampsAJitteringPolicy) {
+  const auto dir = TinyPolicySet().parent_path();
+  std::ofstream(dir / "policies_smooth.json")
+      << R"({"policies": {"walk": "walk/policy.pt"}, "action_smoothing": {"walk": 0.5}})";
+  const PolicySet smooth = LoadPolicySet(dir / "policies_smooth.json");
+  EXPECT_DOUBLE_EQ(smooth.Smoothing("walk"), 0.5);
+  EXPECT_DOUBLE_EQ(smooth.Smoothing("sit"), 0.0);
+  auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("empty"));
+  constexpr int kHinge = 9;  // right elbow: light, so it follows its target within a step
+  auto swing = [&](const PolicySet& set) {
+    StoryOptions o;
+    o.walk_timeout_s = 1.0;
+    StoryRunner runner(scene, set, o);
+    int calls = 0;
+    runner.SetActionOverride([&](const std::string&, const float*, float* a) {
+      double targets[humanoid::kNumDofs] = {0};
+      targets[kHinge] = (calls++ % 2 ? -1.2 : -0.4);
+      runner.humanoid()->TargetsToAction(targets, a);
+    });
+    io::MotionRecordBuilder rec(runner.humanoid());
+    runner.Run({WalkTo({3, 4, 0})}, {3, 0, 0}, 0.0, &rec);
+    const io::MotionRecord m = rec.Finish();
+    // After the first third: the elbow has left its start pose and only swings.
+    const size_t from = m.frames.size() / 3;
+    double sum = 0;
+    for (size_t t = from + 1; t < m.frames.size(); ++t)
+      sum += std::abs(m.frames[t].dof_pos[kHinge] - m.frames[t - 1].dof_pos[kHinge]);
+    return sum / (m.frames.size() - from - 1);
+  };
+  const double raw = swing(LoadPolicySet(TinyPolicySet())), damped = swing(smooth);
+  EXPECT_GT(raw, 0.03) << "the scripted walk jitters";
+  EXPECT_LT(damped, 0.75 * raw) << "raw " << raw << " rad/step, smoothed " << damped;
+
+  for (const char* bad : {R"({"policies": {"walk": "walk/policy.pt"},
+                                     "action_smoothing": {"sit": 0.3}})",
+                          R"({"policies": {"walk": "walk/policy.pt"},
+                                     "action_smoothing": {"walk": 0.95}})"}) {
+    std::ofstream(dir / "policies_bad_smooth.json") << bad;
+    const std::string e =
+        sims::testing::ErrorOf([&] { LoadPolicySet(dir / "policies_bad_smooth.json"); });
+    EXPECT_NE(e.find("policies_bad_smooth.json"), std::string::npos) << e;
+    EXPECT_NE(e.find("action_smoothing."), std::string::npos) << e;
+  }
 }
 
 // One environment computes every policy's self observation at one control rate, so a policy

@@ -1,6 +1,8 @@
 // The per-skill policies a story runs with: a JSON file (assets/policies/policies.json)
-// mapping skill names to ExportPolicy() files, relative to the JSON file's folder.
-//   {"description": "...", "policies": {"walk": "walk/policy.pt", "sit": "sit/policy.pt"}}
+// mapping skill names to ExportPolicy() files, relative to the JSON file's folder, and
+// optionally a skill's run-time action smoothing (sim::ActionFilter).
+//   {"description": "...", "policies": {"walk": "walk/policy.pt", "sit": "sit/policy.pt"},
+//    "action_smoothing": {"walk": 0.3}}
 #pragma once
 
 #include <filesystem>
@@ -13,14 +15,16 @@ namespace sims::fsm {
 
 /// A policy-set file.
 struct PolicySetConfig {
-  std::string description;                      ///< Free text.
-  std::map<std::string, std::string> policies;  ///< skill → policy file.
+  std::string description;                         ///< Free text.
+  std::map<std::string, std::string> policies;     ///< skill → policy file.
+  std::map<std::string, double> action_smoothing;  ///< skill → α (absent: 0, none).
 
   /// Lists the fields for JSON binding.
   template <class A>
   void Serialize(A* a) {
     a->Visit(SIMS_NVP(description));
     a->Visit(SIMS_NVP(policies));
+    a->Visit(SIMS_NVP(action_smoothing));
   }
 };
 
@@ -28,15 +32,19 @@ struct PolicySetConfig {
 struct PolicySet {
   std::filesystem::path source;                           ///< The JSON file.
   std::map<std::string, std::filesystem::path> policies;  ///< skill → absolute policy file.
+  std::map<std::string, double> action_smoothing;         ///< skill → α of its actions.
 
   /// True when the set has a policy for `skill`.
   bool Has(const std::string& skill) const { return policies.count(skill) > 0; }
   /// The file for `skill`; throws sims::Error naming the set file, the field and the skills
   /// it does have.
   const std::filesystem::path& File(const std::string& skill) const;
+  /// The action smoothing α of `skill`'s policy (0 when the set names none).
+  double Smoothing(const std::string& skill) const;
 };
 
-/// Loads and checks a policy set: known skill names, files that exist.
+/// Loads and checks a policy set: known skill names, files that exist, smoothing only for
+/// skills with a policy and within [0, sim::kMaxActionSmoothing].
 PolicySet LoadPolicySet(const std::filesystem::path& path);
 
 /// assets/policies/policies.json.
