@@ -47,9 +47,12 @@ for skill in $skills; do
   bundled="$(dirname "$ckpt")/eval.json"
   starts=0
   [ -f "$bundled" ] && starts=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1])).get('reference_starts', 0))" "$bundled")
-  step "eval_policy $skill ($TRIALS trials, seed $EVAL_SEED, reference starts $starts)"
+  # And the run-time action smoothing the policy set gives it (what the stories run).
+  smoothing=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1])).get('action_smoothing', {}).get(sys.argv[2], 0))" "$POLICIES" "$skill")
+  step "eval_policy $skill ($TRIALS trials, seed $EVAL_SEED, reference starts $starts, action smoothing $smoothing)"
   "$BIN/eval_policy" --checkpoint "$ckpt" --trials "$TRIALS" --seed "$EVAL_SEED" \
-    --reference-starts "$starts" --out "$OUT/eval_$skill.json" --log-level warn > /dev/null
+    --reference-starts "$starts" --action-smoothing "$smoothing" --out "$OUT/eval_$skill.json" \
+    --log-level warn > /dev/null
 done
 
 # 2. The main command's story over seeds 0..SEEDS-1.
@@ -92,11 +95,14 @@ for skill in skills.split():
     e = json.load(open(os.path.join(out, f"eval_{skill}.json")))
     fig["policies"][skill] = {k: e[k] for k in (
         "skill", "scene", "trials", "seed", "success_rate", "fall_rate", "contact_error",
-        "time_to_success_s", "checkpoint", "checkpoint_sha256", "reference_starts") if k in e}
+        "time_to_success_s", "checkpoint", "checkpoint_sha256", "reference_starts",
+        "action_smoothing") if k in e}
     starts = e.get("reference_starts", 0)
+    smoothing = e.get("action_smoothing", 0)
     fig["policies"][skill]["command"] = (
         f"eval_policy --checkpoint {e['checkpoint']} --trials {trials} --seed {eval_seed}"
-        + (f" --reference-starts {starts}" if starts else ""))
+        + (f" --reference-starts {starts}" if starts else "")
+        + (f" --action-smoothing {smoothing:g}" if smoothing else ""))
 done, total, per_seed = 0, 0, []
 for s in range(int(seeds)):
     r = json.load(open(os.path.join(out, f"story_seed{s}", "result.json")))
@@ -132,6 +138,8 @@ lines = ["<!-- figures:begin (tools/figures.sh --write; do not edit by hand) -->
 for skill, p in sorted(fig["policies"].items()):
     starts = p.get("reference_starts", 0)
     starts = f", {100 * starts:.0f} % clip starts" if starts else ""
+    if p.get("action_smoothing", 0):
+        starts += f", action smoothing {p['action_smoothing']:g}"
     lines.append(f"| {skill} | {p['scene']}, {p['trials']} trials, seed {p['seed']}{starts} | "
                  f"{100 * p['success_rate']:.0f} % | {100 * p['fall_rate']:.0f} % | "
                  f"{p['contact_error']:.2f} m | `{p['checkpoint_sha256'][:12]}` |")
