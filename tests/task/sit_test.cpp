@@ -61,6 +61,15 @@ SkillConfig SitConfig() {
   return c;
 }
 
+// SitConfig for poses placed by hand: default starts only, and no force termination (a standing
+// pose placed above a seat pushes its legs through it).
+SkillConfig HandPlacedSitConfig() {
+  SkillConfig c = SitConfig();
+  c.reference_init_prob = 0;
+  c.object.max_contact_force = 0;
+  return c;
+}
+
 TEST(SitSkillTest, TrainingGroundAndObservation) {
   SkillConfig c = SitConfig();
   c.reference_init_prob = 0;
@@ -313,9 +322,7 @@ TEST(SitSkillTest, FullRangeShareKeepsLongApproachesAtLevelZero) {
 }
 
 TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
-  SkillConfig c = SitConfig();
-  c.reference_init_prob = 0;
-  c.object.max_contact_force = 0;  // the standing pose above a seat pushes its legs through it
+  SkillConfig c = HandPlacedSitConfig();
   auto s = MakeSkillEnv(c, 1);
   auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
   const ObjectGeometry& g = sit->geometry(0);
@@ -356,9 +363,7 @@ TEST(SitSkillTest, RewardAndSuccessOnHandMadeStates) {
 // precise_near_share moves that share of r_near to exp(−100·Σ): 0.15 m above the target pays
 // 0.7·(0.6·exp(−0.225) + 0.4·exp(−2.25)) + 0.3; shares beyond 1 with lie's wide kernel are refused.
 TEST(SitSkillTest, PreciseNearShareSharpensTheNearReward) {
-  SkillConfig c = SitConfig();
-  c.reference_init_prob = 0;
-  c.object.max_contact_force = 0;
+  SkillConfig c = HandPlacedSitConfig();
   c.object.precise_near_share = 0.4;
   auto s = MakeSkillEnv(c, 1);
   auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
@@ -386,9 +391,7 @@ TEST(SitSkillTest, PreciseNearShareSharpensTheNearReward) {
 // near_facing_share pays that share of r_near only as the pelvis faces the seat's front: 0.15 m
 // above the target, facing out pays all of it, sideways or facing the back rest half (share 0.5).
 TEST(SitSkillTest, NearFacingShareRewardsFacingTheSeatsFront) {
-  SkillConfig c = SitConfig();
-  c.reference_init_prob = 0;
-  c.object.max_contact_force = 0;
+  SkillConfig c = HandPlacedSitConfig();
   c.object.near_facing_share = 0.5;
   auto s = MakeSkillEnv(c, 1);
   auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
@@ -433,10 +436,8 @@ TEST(SitSkillTest, WideTrainingScaleKeepsOutOfTheHeldOutBands) {
 }
 
 TEST(SitSkillTest, SuccessHeldTruncatesAndForceTerminates) {
-  SkillConfig c = SitConfig();
-  c.reference_init_prob = 0;
+  SkillConfig c = HandPlacedSitConfig();
   c.success_hold_steps = 3;
-  c.object.max_contact_force = 0;
   auto s = MakeSkillEnv(c, 1);
   auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
   const ObjectGeometry& g = sit->geometry(0);
