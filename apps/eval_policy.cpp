@@ -40,8 +40,9 @@ int main(int argc, char** argv) {
                  "share of trials started from motion clips as in training (0-1; default 0: "
                  "standing starts)");
   app.add_option("--action-smoothing", o.action_smoothing,
-                 "run-time action smoothing: each action blended with the one before by this "
-                 "factor (0-0.9; default 0), as a policy set's action_smoothing does");
+                 "action smoothing: each step's PD targets blended with the ones held before "
+                 "by this factor (0-0.9), as a policy set's action_smoothing does (default: "
+                 "the policy's own, from its training config)");
   app.add_flag("--training-starts", o.training_starts,
                "keep the skill's training start settings (get-up: the reach into the rise or "
                "the backplay window from level 0) instead of its evaluation ones");

@@ -47,8 +47,9 @@ for skill in $skills; do
   bundled="$(dirname "$ckpt")/eval.json"
   starts=0
   [ -f "$bundled" ] && starts=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1])).get('reference_starts', 0))" "$bundled")
-  # And the run-time action smoothing the policy set gives it (what the stories run).
-  smoothing=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1])).get('action_smoothing', {}).get(sys.argv[2], 0))" "$POLICIES" "$skill")
+  # And the action smoothing the policy set gives it, where it does (what the stories run;
+  # otherwise the policy's own).
+  smoothing=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1])).get('action_smoothing', {}).get(sys.argv[2], -1))" "$POLICIES" "$skill")
   step "eval_policy $skill ($TRIALS trials, seed $EVAL_SEED, reference starts $starts, action smoothing $smoothing)"
   "$BIN/eval_policy" --checkpoint "$ckpt" --trials "$TRIALS" --seed "$EVAL_SEED" \
     --reference-starts "$starts" --action-smoothing "$smoothing" --out "$OUT/eval_$skill.json" \

@@ -19,7 +19,6 @@
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/loaders.h"
-#include "sims/sim/action_filter.h"
 #include "sims/task/handoff.h"
 #include "sims/task/object_skill.h"
 #include "sims/task/unified/unified.h"
@@ -288,7 +287,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     ThrowInputError("--reference-starts", "reference_starts", "a share in [0, 1]",
                     std::to_string(o.reference_starts));
   sc.reference_init_prob = o.reference_starts;
-  sim::CheckActionSmoothing(o.action_smoothing, "--action-smoothing", "action_smoothing");
+
   if (!sc.style_conditioned && o.reference_starts == 0 && !o.style_eval) sc.motion.manifest.clear();
   if (info.configure_eval && !o.training_starts) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
@@ -296,6 +295,10 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   ec.seed = o.seed;
   ec.threads = o.threads;
   ec.early_termination = true;
+  if (o.action_smoothing >= 0) {
+    sim::CheckActionSmoothing(o.action_smoothing, "--action-smoothing", "action_smoothing");
+    ec.action_smoothing = o.action_smoothing;
+  }
 
   std::shared_ptr<const scene::Scene> scene;
   task::ContactPlan plan;
@@ -338,7 +341,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.control_dt = env.control_dt();
   rep.ablation = o.ablation;
   rep.reference_starts = o.reference_starts;
-  rep.action_smoothing = o.action_smoothing;
+  rep.action_smoothing = ec.action_smoothing;
   rep.results.resize(o.trials);
   // Each env runs trial after trial; env i's k-th trial is a fixed trial index.
   std::vector<int> trial(n_env, -1);
@@ -373,10 +376,8 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   };
   if (keep_ends)
     for (int i = 0; i < n_env; ++i) keep_last(i);
-  std::vector<sim::ActionFilter> filters(n_env, sim::ActionFilter(env.action_dim()));
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
-    filters[i].Reset();
     rep.results[trial[i]].start = setup.skill->start_label(i);
     if (object_skill && setup.context.scene) {
       TrialResult& t = rep.results[trial[i]];
@@ -415,9 +416,6 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   while (finished < o.trials) {
     o.ablation.Apply(segments, n_env, env.obs_dim(), env.observations());
     policy.Act(env.observations(), n_env, actions.data());
-    for (int i = 0; i < n_env; ++i)
-      filters[i].Apply(o.action_smoothing,
-                       actions.data() + static_cast<size_t>(i) * env.action_dim());
     env.Step(actions.data());
     for (int i = 0; i < n_env; ++i) {
       const std::array<Eigen::Vector3d, 2> now = feet(i);

@@ -2,7 +2,7 @@
 
 #include "sims/core/error.h"
 #include "sims/core/paths.h"
-#include "sims/sim/action_filter.h"
+#include "sims/sim/env.h"
 #include "sims/task/skill.h"
 
 namespace sims::fsm {
@@ -17,11 +17,6 @@ const std::filesystem::path& PolicySet::File(const std::string& skill) const {
   ThrowInputError(source.string(), "policies." + skill,
                   "a policy for skill '" + skill + "' (the story needs it)",
                   have.empty() ? "no policies" : "only: " + have);
-}
-
-double PolicySet::Smoothing(const std::string& skill) const {
-  auto it = action_smoothing.find(skill);
-  return it == action_smoothing.end() ? 0.0 : it->second;
 }
 
 PolicySet LoadPolicySet(const std::filesystem::path& path) {

@@ -20,7 +20,6 @@
 #include "sims/learning/train_run.h"
 #include "sims/learning/trainer.h"
 #include "sims/scene/contact_targets.h"
-#include "sims/sim/action_filter.h"
 #include "sims/sim/env.h"
 #include "sims/sim/scene_physics.h"
 #include "sims/task/skill.h"
@@ -87,6 +86,7 @@ struct LoadedPolicy {
   task::SkillConfig skill_config;
   sim::EnvConfig env_config;
   bool trained_among_furniture = false;  // a walk trained in furnished rooms (walk_rooms > 0)
+  double action_smoothing = 0;  // the set's for this skill, else the policy's own training's
 };
 
 LoadedPolicy LoadPolicy(const std::string& skill, const std::filesystem::path& file) {
@@ -142,10 +142,6 @@ struct StoryRunner::Impl {
   std::shared_ptr<StoryTask> task;
   std::unique_ptr<sim::BatchedEnv> env;
   std::vector<float> action;
-  // Smooths what each skill's policy asks with what was applied before (PolicySet's
-  // action_smoothing); it runs across skill changes, so a smoothed skill starts from the last
-  // applied action.
-  sim::ActionFilter filter{humanoid::kNumDofs};
   int step = 0;
   io::MotionRecordBuilder* recorder = nullptr;
   StoryRunner::ActionOverride override_fn;
@@ -217,9 +213,11 @@ struct StoryRunner::Impl {
   }
 
   void ApplyAction() {
-    filter.Apply(policy_set.Smoothing(PendingSkill()), action.data());
+    // The running skill's smoothing blends with the targets held before, whichever skill set
+    // them, so a smoothed skill takes over from the last one's pose targets.
+    const auto it = policies.find(PendingSkill());
+    env->set_action_smoothing(0, it == policies.end() ? 0.0 : it->second.action_smoothing);
     env->Step(action.data());
-    if (env->dones()[0]) filter.Reset();  // a blow-up put the character back
     ++step;
     if (recorder) recorder->AddFrame(env->pose(0));
   }
@@ -341,7 +339,6 @@ struct StoryRunner::Impl {
         Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Eigen::Vector3d::UnitZ());
     task->set_start(pose);
     env->Reset();
-    filter.Reset();
     ++step;  // the reset takes one control step, so motion frames stay on the clock
     if (recorder) recorder->AddFrame(env->pose(0));
   }
@@ -360,7 +357,6 @@ struct StoryRunner::Impl {
     task->set_start(pose);
     task->set_current(nullptr);
     env->Reset();
-    filter.Reset();
     if (recorder) recorder->AddFrame(env->pose(0));
     const std::string prefix = run.log_prefix;
     run = RunState();
@@ -579,6 +575,10 @@ StoryRunner::StoryRunner(std::shared_ptr<const scene::Scene> scene, const Policy
   for (const auto& [skill, file] : policies.policies) {
     LoadedPolicy p = LoadPolicy(skill, file);
     p.skill_config.walk.success_radius = options.walk_success_radius;
+    const auto smoothing = policies.action_smoothing.find(skill);
+    p.action_smoothing = smoothing != policies.action_smoothing.end()
+                             ? smoothing->second
+                             : p.env_config.action_smoothing;
     try {
       const task::SkillInfo& info = task::FindSkill(skill);
       const bool flat_floor = info.traits.flat_scene && !p.trained_among_furniture;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include <fmt/format.h>
 #include <omp.h>
 
 #include "sims/core/error.h"
@@ -48,6 +49,15 @@ void EnvConfig::Validate() const {
   Require(recovery_episode_prob >= 0 && recovery_episode_prob <= 1, "recovery_episode_prob",
           "a probability in [0, 1]");
   Require(recovery_steps >= 1, "recovery_steps", "at least 1 step");
+  Require(action_smoothing >= 0 && action_smoothing <= kMaxActionSmoothing, "action_smoothing",
+          fmt::format("a smoothing factor in [0, {}]", kMaxActionSmoothing));
+}
+
+void CheckActionSmoothing(double alpha, std::string_view source, std::string_view field) {
+  if (!(alpha >= 0 && alpha <= kMaxActionSmoothing))
+    ThrowInputError(source, field,
+                    fmt::format("a smoothing factor in [0, {}]", kMaxActionSmoothing),
+                    fmt::format("{}", alpha));
 }
 
 namespace {
@@ -97,6 +107,7 @@ BatchedEnv::BatchedEnv(std::shared_ptr<const humanoid::Humanoid> humanoid, const
   rewards_.assign(n, 0.0f);
   amp_obs_.assign(static_cast<size_t>(n) * amp_obs_dim(), 0.0f);
   dones_.assign(n, 0);
+  action_smoothing_.assign(n, config_.action_smoothing);
   terminated_.assign(n, 0);
   successes_.assign(n, 0);
   completions_.assign(n, 0);
@@ -147,6 +158,12 @@ void BatchedEnv::Reset() {
 void BatchedEnv::ResetEnv(int env_id) {
   SIMS_CHECK(env_id >= 0 && env_id < config_.num_envs);
   ResetSlot(env_id);
+}
+
+void BatchedEnv::set_action_smoothing(int env_id, double alpha) {
+  SIMS_CHECK(env_id >= 0 && env_id < config_.num_envs);
+  CheckActionSmoothing(alpha, "BatchedEnv", "action_smoothing");
+  action_smoothing_[env_id] = alpha;
 }
 
 void BatchedEnv::ResetSlot(int i) {
@@ -263,7 +280,11 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   const mjModel* m = humanoid_->model();
   mjData* d = s.data.get();
   humanoid_->ActionToTargets(action, s.targets);
-  for (int j = 0; j < humanoid::kNumDofs; ++j) d->ctrl[humanoid_->actuator_id(j)] = s.targets[j];
+  const double alpha = action_smoothing_[i];
+  for (int j = 0; j < humanoid::kNumDofs; ++j) {
+    double& held = d->ctrl[humanoid_->actuator_id(j)];
+    held = alpha > 0 ? alpha * held + (1 - alpha) * s.targets[j] : s.targets[j];
+  }
   // The position/velocity stage of the state we start from is already computed (by mj_forward
   // after a reset or mj_step1 at the end of the last control step), so finish that step with
   // mj_step2, then run full steps, and end with mj_step1 so observations see the final state.

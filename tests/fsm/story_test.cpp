@@ -552,7 +552,7 @@ TEST(StoryMixedWidthTest, EachPolicySeesItsOwnSkillsObservation) {
   EXPECT_GT(calls["sit"], 0);
 }
 
-// A policy set's action_smoothing blends each action with the one applied before: a scripted
+// A policy set's action_smoothing blends each step's targets with those held before: a scripted
 // walk that flips the elbow's target between −0.4 and −1.2 rad every step moves it far less with
 // α = 0.5 (its targets swing a third as far, (1 − α)/(1 + α); the arm, slower than 30 Hz, about
 // two thirds as far); smoothing for a skill the set has no policy for, or beyond
@@ -562,8 +562,7 @@ TEST(StoryActionSmoothingTest, SmoothingDampsAJitteringPolicy) {
   std::ofstream(dir / "policies_smooth.json")
       << R"({"policies": {"walk": "walk/policy.pt"}, "action_smoothing": {"walk": 0.5}})";
   const PolicySet smooth = LoadPolicySet(dir / "policies_smooth.json");
-  EXPECT_DOUBLE_EQ(smooth.Smoothing("walk"), 0.5);
-  EXPECT_DOUBLE_EQ(smooth.Smoothing("sit"), 0.0);
+  EXPECT_DOUBLE_EQ(smooth.action_smoothing.at("walk"), 0.5);
   auto scene = std::make_shared<scene::Scene>(scene::BuiltinScene("empty"));
   constexpr int kHinge = 9;  // right elbow: light, so it follows its target within a step
   auto swing = [&](const PolicySet& set) {

@@ -78,6 +78,47 @@ TEST(EnvTest, ConfigValidationNamesField) {
   }
 }
 
+// action_smoothing blends each step's PD targets with those held before (after a reset: the
+// initial pose's), α·held + (1 − α)·new, per env; a snapshot carries the held targets, so a
+// smoothed run resumes bit-exactly; out-of-range values are refused by name.
+TEST(EnvTest, ActionSmoothingBlendsWithTheHeldTargets) {
+  EnvConfig c = SmallConfig(2, 1);
+  c.action_smoothing = 0.5;
+  BatchedEnv env(MakeHumanoid(), c);
+  env.Reset();
+  env.set_action_smoothing(1, 0.0);
+  const humanoid::Humanoid& h = *MakeHumanoid();
+  auto held = [&](int i, int j) { return env.View(i).data->ctrl[h.actuator_id(j)]; };
+  std::vector<double> before(humanoid::kNumDofs);
+  for (int j = 0; j < humanoid::kNumDofs; ++j) before[j] = held(0, j);
+  Rng rng(3);
+  const std::vector<float> a = RandomActions(rng, 2, 0.5);
+  std::vector<double> target(2 * humanoid::kNumDofs);
+  h.ActionToTargets(a.data(), target.data());
+  h.ActionToTargets(a.data() + humanoid::kNumDofs, target.data() + humanoid::kNumDofs);
+  env.Step(a.data());
+  for (int j = 0; j < humanoid::kNumDofs; ++j) {
+    EXPECT_NEAR(held(0, j), 0.5 * before[j] + 0.5 * target[j], 1e-12) << j;
+    EXPECT_EQ(held(1, j), target[humanoid::kNumDofs + j]) << "env 1 is not smoothed";
+  }
+
+  EnvConfig resumed_config = c;
+  BatchedEnv resumed(MakeHumanoid(), resumed_config);
+  resumed.LoadState(env.SaveState());
+  resumed.set_action_smoothing(1, 0.0);
+  const std::vector<float> next = RandomActions(rng, 2, 0.5);
+  env.Step(next.data());
+  resumed.Step(next.data());
+  EXPECT_EQ(0, std::memcmp(env.observations(), resumed.observations(),
+                           sizeof(float) * 2 * env.obs_dim()));
+
+  EXPECT_THROW(env.set_action_smoothing(0, 0.95), Error);
+  c.action_smoothing = -0.1;
+  const std::string e = sims::testing::ErrorOf([&] { BatchedEnv bad(MakeHumanoid(), c); });
+  EXPECT_NE(e.find("action_smoothing"), std::string::npos) << e;
+  EXPECT_NE(e.find("[0, 0.9]"), std::string::npos) << e;
+}
+
 // Rotating the whole world about z (positions, orientations, velocities) must leave the
 // local observations unchanged.
 TEST(EnvTest, ObservationsAreHeadingInvariant) {

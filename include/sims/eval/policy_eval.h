@@ -49,9 +49,9 @@ struct PolicyEvalOptions {
   int num_objects = 16;
   sim::ObsAblation ablation;    ///< Inputs withheld from the policy (--no-text, ...).
   double reference_starts = 0;  ///< Share of trials started from motion clips (0–1).
-  /// Run-time action smoothing α (sim::ActionFilter; 0 = the policy's actions as they come),
-  /// to measure what a policy set's action_smoothing would do.
-  double action_smoothing = 0;
+  /// Action smoothing α the trials run with (sim::EnvConfig::action_smoothing), to measure
+  /// what a policy set's action_smoothing does; negative = the one the policy trained with.
+  double action_smoothing = -1;
   /// Keeps the skill's training start settings instead of its evaluation ones (SkillInfo::
   /// configure_eval): get-up's reach into the rise or its backplay window (levels from 0), a
   /// diagnostic of what the policy trains on.
@@ -134,7 +134,7 @@ struct PolicyEvalReport {
   double foot_sliding_ratio = 0;  ///< Share of those foot moves faster than 0.1 m/s.
   sim::ObsAblation ablation;      ///< Inputs that were withheld.
   double reference_starts = 0;    ///< Share of trials asked to start from motion clips.
-  double action_smoothing = 0;    ///< The run-time action smoothing α the trials ran with.
+  double action_smoothing = 0;    ///< The action smoothing α the trials ran with.
   /// Per start kind (skills with start labels, e.g. get-up's seat/bed/floor/fall).
   struct StartGroup {
     int trials = 0;              ///< Trials that started this way.

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sims/core/config.h"
@@ -37,6 +38,10 @@ struct EnvConfig {
   /// the fall it just had). 0 = off.
   double recovery_episode_prob = 0.0;
   int recovery_steps = 60;  ///< Grace of a recovery episode (control steps; ASE 60).
+  /// Each control step's PD targets are blended with the ones the actuators held before
+  /// (after a reset: the initial pose), α·held + (1 − α)·new: damps a policy whose action
+  /// jumps between steps (the feet tapping in place). 0 = off; at most kMaxActionSmoothing.
+  double action_smoothing = 0.0;
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -57,10 +62,17 @@ struct EnvConfig {
     a->Visit(SIMS_NVP(seed));
     a->Visit(SIMS_NVP(recovery_episode_prob));
     a->Visit(SIMS_NVP(recovery_steps));
+    a->Visit(SIMS_NVP(action_smoothing));
   }
   /// Throws FieldError on out-of-range values.
   void Validate() const;
 };
+
+/// Largest action smoothing accepted: at α → 1 the character would stop following its policy.
+inline constexpr double kMaxActionSmoothing = 0.9;
+
+/// Throws sims::Error naming `source` and `field` unless 0 ≤ alpha ≤ kMaxActionSmoothing.
+void CheckActionSmoothing(double alpha, std::string_view source, std::string_view field);
 
 /// Counters of why episodes ended.
 struct EnvStats {
@@ -100,6 +112,11 @@ class BatchedEnv {
   void Step(const float* actions);
   /// Resets one env now (e.g. when a caller decides to restart it).
   void ResetEnv(int env_id);
+  /// Sets one env's action smoothing α (EnvConfig::action_smoothing; a story sets its
+  /// character's to the running skill's).
+  void set_action_smoothing(int env_id, double alpha);
+  /// One env's action smoothing α.
+  double action_smoothing(int env_id) const { return action_smoothing_.at(env_id); }
 
   /// Number of environments.
   int num_envs() const { return config_.num_envs; }
@@ -183,6 +200,7 @@ class BatchedEnv {
   std::vector<std::unique_ptr<Slot>> slots_;
   std::vector<float> obs_, terminal_obs_, rewards_, amp_obs_;
   std::vector<uint8_t> dones_, terminated_, successes_, completions_, episode_reference_;
+  std::vector<double> action_smoothing_;  // per env
   // Per-env end reasons from the parallel loop, summed serially afterwards.
   std::vector<EndReason> end_reason_;
   std::vector<uint8_t> recovered_;  // 1: this step's fall became a recovery episode
