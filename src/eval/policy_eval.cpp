@@ -287,7 +287,6 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     ThrowInputError("--reference-starts", "reference_starts", "a share in [0, 1]",
                     std::to_string(o.reference_starts));
   sc.reference_init_prob = o.reference_starts;
-
   if (!sc.style_conditioned && o.reference_starts == 0 && !o.style_eval) sc.motion.manifest.clear();
   if (info.configure_eval && !o.training_starts) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
