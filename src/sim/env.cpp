@@ -37,6 +37,12 @@ void ObsAblation::Apply(const std::vector<ObsSegment>& segments, int n, int obs_
 
 uint32_t FeetContactMask() { return (1u << humanoid::kRightFoot) | (1u << humanoid::kLeftFoot); }
 
+namespace {
+std::string SmoothingRange() {
+  return fmt::format("a smoothing factor in [0, {}]", kMaxActionSmoothing);
+}
+}  // namespace
+
 void EnvConfig::Validate() const {
   Require(num_envs > 0, "num_envs", "a positive integer");
   Require(substeps > 0, "substeps", "a positive integer");
@@ -50,14 +56,12 @@ void EnvConfig::Validate() const {
           "a probability in [0, 1]");
   Require(recovery_steps >= 1, "recovery_steps", "at least 1 step");
   Require(action_smoothing >= 0 && action_smoothing <= kMaxActionSmoothing, "action_smoothing",
-          fmt::format("a smoothing factor in [0, {}]", kMaxActionSmoothing));
+          SmoothingRange());
 }
 
 void CheckActionSmoothing(double alpha, std::string_view source, std::string_view field) {
   if (!(alpha >= 0 && alpha <= kMaxActionSmoothing))
-    ThrowInputError(source, field,
-                    fmt::format("a smoothing factor in [0, {}]", kMaxActionSmoothing),
-                    fmt::format("{}", alpha));
+    ThrowInputError(source, field, SmoothingRange(), fmt::format("{}", alpha));
 }
 
 namespace {

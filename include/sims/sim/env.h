@@ -115,8 +115,6 @@ class BatchedEnv {
   /// Sets one env's action smoothing α (EnvConfig::action_smoothing; a story sets its
   /// character's to the running skill's).
   void set_action_smoothing(int env_id, double alpha);
-  /// One env's action smoothing α.
-  double action_smoothing(int env_id) const { return action_smoothing_.at(env_id); }
 
   /// Number of environments.
   int num_envs() const { return config_.num_envs; }
