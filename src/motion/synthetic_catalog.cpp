@@ -1002,6 +1002,11 @@ void SeatSpec::Validate() const {
   RequireRange(height_jitter, "height_jitter");
 }
 
+void SeatRecipe::Validate() const {
+  for (double h : extra_heights)
+    Require(h > 0.2 && h < 1.0, "extra_heights", "seat heights in (0.2, 1.0) m");
+}
+
 void SitIdleSection::Validate() const {
   Require(duration > 0, "duration", "a positive duration (s)");
   Require(!furniture.empty(), "furniture", "at least one furniture label");
@@ -1382,6 +1387,25 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
       MotionMeta meta = Meta(sofa.lie_down, "lie", 0, sofa.furniture);
       meta.name += "_h" + std::to_string(std::lround(100 * h));
       out.push_back(Build(keys, n, meta, fps, {seat}));
+    }
+  }
+  // Seats of the extra heights after that, so every draw above stays as it was.
+  for (const SeatRecipe& r : catalog.seats) {
+    for (double h : r.extra_heights) {
+      const FurnitureSpec seat = PlaceSeat(h, r.seat.depth, r.seat.width);
+      const std::string suffix = "_h" + std::to_string(std::lround(100 * h));
+      if (wanted("sit")) {
+        MotionMeta meta = Meta(r.sit, "sit", 0, {});
+        meta.name += suffix;
+        out.push_back(
+            SitDown(seat, r.sit.lean, r.sit.sit_time, r.sit.hold, meta, fps, rng.NextU64()));
+      }
+      if (wanted("getup")) {
+        MotionMeta meta = Meta(r.getup, "getup", 0, {});
+        meta.name += suffix;
+        out.push_back(RiseFromSeat(seat, r.getup.lean, r.getup.sit_time, r.getup.hold, meta, fps,
+                                   rng.NextU64()));
+      }
     }
   }
   return out;

@@ -122,6 +122,7 @@ ObjectGeometry DescribeObject(const scene::Scene& scene, int index,
   const scene::Object& o = scene.objects[index];
   ObjectGeometry g;
   g.object = index;
+  g.category = o.category;
   g.X_WO = o.X_WO;
   g.yaw = YawOf(o.X_WO.linear());
   g.local = o.LocalBounds();
@@ -493,17 +494,29 @@ int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const Object
                                      double lateral, Rng& rng, ClipPlacement* placement,
                                      double max_raise) const {
   if (!context_.motions) return -1;
-  std::vector<int> fitting;
-  std::vector<ClipPlacement> placements;
+  // Clips made for the object's own kind come first: a sofa's seated pose sits deep, and on a
+  // small stool of the same height it put the pelvis over the back edge (it tipped over).
+  std::vector<int> fitting, own_kind;
+  std::vector<ClipPlacement> placements, own_placements;
   for (int c : clips) {
     Eigen::Vector2d p_clip;
     double yaw_clip = 0, dz = 0;
-    if (!ClipFurnitureFrame(context_.motions->clip(c), g, lateral, &p_clip, &yaw_clip, &dz))
-      continue;
+    const motion::MotionClip& clip = context_.motions->clip(c);
+    if (!ClipFurnitureFrame(clip, g, lateral, &p_clip, &yaw_clip, &dz)) continue;
     if (dz < -kMaxClipHeightMismatch || dz > max_raise) continue;
+    const ClipPlacement p =
+        ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
     fitting.push_back(c);
-    placements.push_back(
-        ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz));
+    placements.push_back(p);
+    const auto& kinds = clip.meta().furniture;
+    if (std::find(kinds.begin(), kinds.end(), g.category) != kinds.end()) {
+      own_kind.push_back(c);
+      own_placements.push_back(p);
+    }
+  }
+  if (!own_kind.empty()) {
+    fitting.swap(own_kind);
+    placements.swap(own_placements);
   }
   if (fitting.empty()) return -1;
   const int k = static_cast<int>(rng.UniformInt(static_cast<int64_t>(fitting.size())));

@@ -63,7 +63,7 @@ TEST(SyntheticTest, CatalogueCoversSkillsWithLabels) {
   // Every recipe comes as its base clip and one "_v1" variant (SyntheticOptions::variants);
   // the beds of extra heights and the sofa lie-downs ("_h<cm>") come once each.
   EXPECT_EQ(SyntheticOptions{}.variants, 2);
-  int base = 0, v1 = 0, sofa = 0;
+  int base = 0, v1 = 0, sofa = 0, stool = 0;
   for (const MotionClip& c : Catalogue()) {
     const std::string& n = c.meta().name;
     if (n.rfind("lie_down_sofa_h", 0) == 0) {
@@ -73,11 +73,16 @@ TEST(SyntheticTest, CatalogueCoversSkillsWithLabels) {
       continue;
     }
     if (n.find("_bed_h") != std::string::npos) continue;
+    if (n.find("_stool_h") != std::string::npos) {
+      ++stool;
+      continue;
+    }
     const bool variant = n.size() > 3 && n.compare(n.size() - 3, 3, "_v1") == 0;
     (variant ? v1 : base) += 1;
   }
   EXPECT_EQ(v1, base);
-  EXPECT_EQ(sofa, 2);  // configs/motion/synthetic_catalog.json: sofa_lie.heights
+  EXPECT_EQ(sofa, 2);   // configs/motion/synthetic_catalog.json: sofa_lie.heights
+  EXPECT_EQ(stool, 4);  // seats[2].extra_heights: a sit-down and a get-up at each
   EXPECT_GE(skills["walk"], 20);
   for (const char* e :
        {"neutral", "sad", "tired", "drunk", "hurried", "angry", "happy", "relaxed", "stressed"})
@@ -100,6 +105,24 @@ TEST(SyntheticTest, ExtraBedHeightGetsALieDownAndAGetUp) {
   // The get-up starts lying on the bed and ends standing.
   EXPECT_GT(up.frames().front().root_pos.z(), 0.42);
   EXPECT_NEAR(up.frames().back().root_pos.z(), humanoid::kDefaultRootHeight, 0.1);
+}
+
+// A seat's extra heights: a sit-down and a get-up on a stool of exactly that height, each
+// labelled for the recipe's furniture, the get-up starting seated and ending standing.
+TEST(SyntheticTest, ExtraSeatHeightsGetASitDownAndAGetUp) {
+  for (const double h : {0.37, 0.53}) {
+    const std::string suffix = "_h" + std::to_string(std::lround(100 * h));
+    SCOPED_TRACE(suffix);
+    const MotionClip& sit = ByName("sit_down_stool" + suffix);
+    const MotionClip& up = ByName("getup_from_stool" + suffix);
+    EXPECT_EQ(sit.meta().skill, "sit");
+    EXPECT_EQ(up.meta().skill, "getup");
+    EXPECT_EQ(up.meta().furniture, (std::vector<std::string>{"stool", "armchair"}));
+    EXPECT_NEAR(sit.meta().params.at("furniture_height"), h, 1e-9);
+    EXPECT_NEAR(up.meta().params.at("furniture_height"), h, 1e-9);
+    EXPECT_LT(up.frames().front().root_pos.z(), h + 0.2);
+    EXPECT_NEAR(up.frames().back().root_pos.z(), humanoid::kDefaultRootHeight, 0.1);
+  }
 }
 
 // The sit approach composites: a walk-up and a 180° turn that end where the sit-down clip

@@ -1,5 +1,6 @@
 #include "sims/task/getup/getup.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -404,6 +405,32 @@ TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {
   };
   EXPECT_EQ(bed_starts(0.15), 12);
   EXPECT_LT(bed_starts(0.0), 12);  // without the lift the high beds fall back to fall states
+}
+
+// Held-out stools are lower (0.35–0.40 m) or higher (0.52–0.57 m) than any training stool;
+// seated starts on them take a stool clip of a near height (catalogue extra_heights), not a
+// sofa's deep seated pose, which on a small stool put the pelvis over its back edge.
+TEST(GetUpSkillTest, HeldOutStoolsStartFromStoolClips) {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {"stool"};
+  c.object.held_out_objects = true;
+  c.object.num_objects = 6;
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
+  auto s = MakeSkillEnv(c, 12);
+  auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
+  const auto& lib = *s.setup.context.motions;
+  for (int i = 0; i < 12; ++i) {
+    ASSERT_EQ(getup->start(i), GetUpSkill::kSeatStart) << i;
+    const auto& kinds = lib.clip(getup->style_id(i)).meta().furniture;
+    EXPECT_NE(std::find(kinds.begin(), kinds.end(), "stool"), kinds.end()) << i;
+    // The pelvis is over the seat, inside its front-to-back extent.
+    const ObjectGeometry& g = getup->geometry(i);
+    const Eigen::Vector3d p_O = g.X_WO.inverse() * s.env->bodies(i).pos[humanoid::kPelvis];
+    const scene::Aabb& seat = g.part_local(kSeatPart);
+    EXPECT_GT(p_O.x(), seat.min.x()) << i;
+    EXPECT_LT(p_O.x(), seat.max.x()) << i;
+  }
 }
 
 // A share of reference starts lie on the floor at the start of a floor get-up clip (a clip

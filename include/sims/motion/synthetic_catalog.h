@@ -232,6 +232,9 @@ struct SeatRecipe {
   SeatSpec seat;    ///< The seat.
   SitMotion sit;    ///< Sit-down clip (skill sit).
   SitMotion getup;  ///< Get-up clip (skill getup: a sit-down played backwards).
+  /// Further seat heights (m) with one sit-down and one get-up clip each (names end in _h<cm>),
+  /// so that reference starts find a clip of the seat's own kind near any seat's height.
+  std::vector<double> extra_heights;
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -239,7 +242,10 @@ struct SeatRecipe {
     a->Visit(SIMS_NVP(seat));
     a->Visit(SIMS_NVP(sit));
     a->Visit(SIMS_NVP(getup));
+    a->Visit(SIMS_NVP(extra_heights));
   }
+  /// Checks the extra heights.
+  void Validate() const;
 };
 
 /// Seated idles on one seat.

@@ -62,6 +62,7 @@ struct ObjectPart {
 
 struct ObjectGeometry {
   int object = -1;                                         ///< Scene object index.
+  std::string category;                                    ///< Scene category (chair, stool, ...).
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();  ///< Pose (yaw-only for furniture).
   double yaw = 0;                                          ///< Heading of the object's +x.
   scene::Aabb local;                                       ///< Bounds in the object frame.
@@ -245,7 +246,8 @@ class ObjectSkill : public Skill {
                       sim::InitialState* init);
   /// Seat/bed clips of `skills` whose furniture fits object g, for reference init: returns
   /// a clip index (−1 if none) and its placement (`lateral` m along a wide seat). The object may
-  /// be up to kMaxClipHeightMismatch lower and up to `max_raise` higher than the clip's.
+  /// be up to kMaxClipHeightMismatch lower and up to `max_raise` higher than the clip's; clips
+  /// made for the object's category are preferred when one fits.
   int ChooseFurnitureClip(const std::vector<int>& clips, const ObjectGeometry& g, double lateral,
                           Rng& rng, ClipPlacement* placement,
                           double max_raise = kMaxClipHeightMismatch) const;
