@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <deque>
 
 #include "sims/core/config.h"
 #include "sims/core/error.h"
@@ -203,6 +204,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
                    {"num_steps", t.num_steps},
                    {"length", t.length}});
     if (!t.start.empty()) per.back()["start"] = t.start;
+    per.back()["touching"] = t.touching;
     if (!t.object.empty()) {
       per.back()["object"] = t.object;
       per.back()["object_extent"] = {t.object_extent.x(), t.object_extent.y(), t.object_extent.z()};
@@ -375,6 +377,15 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   };
   if (keep_ends)
     for (int i = 0; i < n_env; ++i) keep_last(i);
+  // What touched the scene besides feet on the floor in each env's last second of steps (the
+  // step that ends a trial has already reset the env): a brush now and then is enough to break
+  // a success that must hold, so the last step alone showed nothing in the recorded bed trials.
+  const int touch_window = std::max(1, static_cast<int>(std::lround(1.0 / rep.control_dt)));
+  std::vector<std::deque<uint32_t>> touching(n_env);
+  auto keep_touching = [&](int i) {
+    touching[i].push_back(task::OffFloorContacts(*setup.context.humanoid, env.data(i)));
+    if (static_cast<int>(touching[i].size()) > touch_window) touching[i].pop_front();
+  };
   auto begin_trial = [&](int i) {
     if (trial[i] < 0) return;
     rep.results[trial[i]].start = setup.skill->start_label(i);
@@ -432,6 +443,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
       if (!env.dones()[i] && recording[i]) recording[i]->AddFrame(env.pose(i));
       if (!env.dones()[i] && keep_ends) keep_last(i);
+      if (!env.dones()[i]) keep_touching(i);
       if (!env.dones()[i]) {
         if (o.style_eval) {
           const humanoid::HumanoidPose& p = env.pose(i);
@@ -461,6 +473,11 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       t.force_end = env.end_reasons()[i] == sim::EndReason::kTaskTerminate;
       t.contact_error = hook->error(i);
       t.goal_offset = hook->offset(i);
+      uint32_t touched = 0;
+      for (const uint32_t m : touching[i]) touched |= m;
+      touching[i].clear();
+      for (int b = 0; b < humanoid::kNumBodies; ++b)
+        if (touched & (1u << b)) t.touching.push_back(humanoid::BodyNames()[b]);
       if (hook->multi_step()) {
         t.steps_completed = hook->completed(i);
         t.num_steps = hook->num_steps(i);

@@ -95,17 +95,21 @@ void Skill::SetGoal(int env_id, int joint, const Eigen::Vector3d& target) {
 
 void Skill::ClearGoals(int env_id) { state_[env_id].mask = 0; }
 
-bool OnlyFeetOnTheFloor(const sim::EnvView& view) {
-  const mjData* d = view.data;
+uint32_t OffFloorContacts(const humanoid::Humanoid& h, const mjData* d) {
+  uint32_t mask = 0;
   for (int c = 0; c < d->ncon; ++c) {
-    const int b1 = view.humanoid->geom_body(d->contact[c].geom1);
-    const int b2 = view.humanoid->geom_body(d->contact[c].geom2);
+    const int b1 = h.geom_body(d->contact[c].geom1);
+    const int b2 = h.geom_body(d->contact[c].geom2);
     if ((b1 >= 0) == (b2 >= 0)) continue;  // self-contact or scene-scene
     const int b = b1 >= 0 ? b1 : b2;
-    if (b != humanoid::kLeftFoot && b != humanoid::kRightFoot) return false;
-    if (d->contact[c].pos[2] > kFloorContactHeight) return false;
+    const bool foot = b == humanoid::kLeftFoot || b == humanoid::kRightFoot;
+    if (!foot || d->contact[c].pos[2] > kFloorContactHeight) mask |= 1u << b;
   }
-  return true;
+  return mask;
+}
+
+bool OnlyFeetOnTheFloor(const sim::EnvView& view) {
+  return OffFloorContacts(*view.humanoid, view.data) == 0;
 }
 
 void Skill::SetStyle(int env_id, int style) { state_[env_id].style = style; }

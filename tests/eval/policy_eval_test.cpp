@@ -366,6 +366,16 @@ TEST(PolicyEvalTest, GetUpTrialsAreGroupedByStart) {
   EXPECT_GE(r.by_start.size(), 2u) << "both clip and fall-state starts";
   for (const auto& t : r.results) EXPECT_FALSE(t.start.empty());
   EXPECT_TRUE(r.ToJson().contains("by_start"));
+  // An untrained policy started on the floor is still lying there in its last second: more than
+  // its feet touch the scene ("touching"), which is why such a trial cannot count.
+  int on_floor = 0;
+  for (const auto& t : r.results) {
+    if (t.start != "fall" && t.start != "floor") continue;
+    ++on_floor;
+    EXPECT_FALSE(t.touching.empty());
+  }
+  EXPECT_GT(on_floor, 0);
+  EXPECT_TRUE(r.ToJson()["results"][0].contains("touching"));
   // A skill without start kinds reports none.
   const PolicyEvalReport walk =
       EvaluatePolicy(TwoEnvOptions(TinyPolicy(WalkConfig(), 10, "eval_nostart"), 2));

@@ -587,6 +587,7 @@ TEST(GetUpSkillTest, SuccessIsStandingUprightOnTheFloorAlone) {
   EXPECT_GT(ViewOf(*s.env, 0).data->ncon, 0);
   EXPECT_TRUE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
   EXPECT_TRUE(getup->StandingClear(ViewOf(*s.env, 0)));
+  EXPECT_EQ(OffFloorContacts(s.env->humanoid(), ViewOf(*s.env, 0).data), 0u);
   // The same pose on the mattress: standing, but on furniture.
   const ObjectGeometry& g = getup->geometry(0);
   const scene::Aabb& mattress = g.part_local(kMattressPart);
@@ -595,6 +596,11 @@ TEST(GetUpSkillTest, SuccessIsStandingUprightOnTheFloorAlone) {
   EXPECT_GT(ViewOf(*s.env, 0).data->ncon, 0);
   EXPECT_TRUE(GetUpSkill::Standing(s.env->bodies(0), c.getup));
   EXPECT_FALSE(getup->StandingClear(ViewOf(*s.env, 0)));
+  // What spoils it: the feet, on the mattress (eval_policy's per-trial "touching").
+  const uint32_t feet = (1u << humanoid::kLeftFoot) | (1u << humanoid::kRightFoot);
+  const uint32_t on_bed = OffFloorContacts(s.env->humanoid(), ViewOf(*s.env, 0).data);
+  EXPECT_NE(on_bed & feet, 0u);
+  EXPECT_EQ(on_bed & ~feet, 0u);
   // Bent over (torso pitched 60° forward at the abdomen): pelvis upright, torso and head not.
   humanoid::HumanoidPose bent = PoseAt(Eigen::Vector3d(stand.x(), stand.y(), 0.87));
   bent.dof_pos[1] = 1.05;  // abdomen_y

@@ -93,9 +93,12 @@ struct TrialResult {
   std::string object;
   Eigen::Vector3d object_extent = Eigen::Vector3d::Zero();
   double start_distance = 0;  ///< ...
-  std::string caption;        ///< Style evaluation: the caption whose z the policy saw.
-  std::string emotion;        ///< ... its emotion.
-  std::string style;          ///< ... the classifier's label of the motion ("" = too short).
+  /// Bodies that touched the scene other than a foot on the floor in the trial's last second
+  /// (why a get-up that stands does not count: a shin brushing the bed frame).
+  std::vector<std::string> touching;
+  std::string caption;  ///< Style evaluation: the caption whose z the policy saw.
+  std::string emotion;  ///< ... its emotion.
+  std::string style;    ///< ... the classifier's label of the motion ("" = too short).
 };
 
 /// Style evaluation results (PolicyEvalOptions::style_eval).

@@ -283,6 +283,9 @@ inline constexpr double kFloorContactHeight = 0.05;
 /// True when the character touches the scene with nothing but its feet, and those only on the
 /// floor (contact points at most kFloorContactHeight high).
 bool OnlyFeetOnTheFloor(const sim::EnvView& view);
+/// The bodies (bit b = humanoid body b) touching the scene other than a foot on the floor:
+/// what keeps OnlyFeetOnTheFloor false (0 when it holds).
+uint32_t OffFloorContacts(const humanoid::Humanoid& h, const mjData* d);
 
 /// Registry lookup; throws sims::Error listing the known names.
 const SkillInfo& FindSkill(const std::string& name);
