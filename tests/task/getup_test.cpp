@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -25,6 +26,17 @@ SkillConfig GetUpConfig() {
   c.motion.manifest = testing::SyntheticManifest({"getup"});
   c.motion.skills = {"getup"};
   c.getup.fall_states = 8;
+  return c;
+}
+
+// Every start from a furniture clip, on six held-out pieces of one category.
+SkillConfig HeldOutFurnitureStartConfig(const std::string& category) {
+  SkillConfig c = GetUpConfig();
+  c.object.object_categories = {category};
+  c.object.held_out_objects = true;
+  c.object.num_objects = 6;
+  c.reference_init_prob = 1.0;
+  c.getup.floor_clip_share = 0.0;
   return c;
 }
 
@@ -377,12 +389,7 @@ TEST(GetUpSkillTest, RisenReferenceStartsStandOnTheFloor) {
 // Held-out beds reach 0.62 m, past the bed clips (0.42–0.53 m) and their 5 cm: a lying start is
 // lifted onto a higher bed (getup_bed_raise), so every held-out bed gets bed starts.
 TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {
-  SkillConfig c = GetUpConfig();
-  c.object.object_categories = {"bed"};
-  c.object.held_out_objects = true;
-  c.object.num_objects = 6;
-  c.reference_init_prob = 1.0;
-  c.getup.floor_clip_share = 0.0;
+  const SkillConfig c = HeldOutFurnitureStartConfig("bed");
   const auto bed_starts = [&](double raise) {
     SkillConfig k = c;
     k.getup.bed_raise = raise;
@@ -411,13 +418,7 @@ TEST(GetUpSkillTest, HeldOutBedsGetLyingStarts) {
 // seated starts on them take a stool clip of a near height (catalogue extra_heights), not a
 // sofa's deep seated pose, which on a small stool put the pelvis over its back edge.
 TEST(GetUpSkillTest, HeldOutStoolsStartFromStoolClips) {
-  SkillConfig c = GetUpConfig();
-  c.object.object_categories = {"stool"};
-  c.object.held_out_objects = true;
-  c.object.num_objects = 6;
-  c.reference_init_prob = 1.0;
-  c.getup.floor_clip_share = 0.0;
-  auto s = MakeSkillEnv(c, 12);
+  auto s = MakeSkillEnv(HeldOutFurnitureStartConfig("stool"), 12);
   auto* getup = dynamic_cast<GetUpSkill*>(s.setup.skill.get());
   const auto& lib = *s.setup.context.motions;
   for (int i = 0; i < 12; ++i) {
