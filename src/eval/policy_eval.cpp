@@ -443,8 +443,8 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
       if (env.completions()[i] && t.success_step < 0) t.success_step = t.length;
       if (!env.dones()[i] && recording[i]) recording[i]->AddFrame(env.pose(i));
       if (!env.dones()[i] && keep_ends) keep_last(i);
-      if (!env.dones()[i]) keep_touching(i);
       if (!env.dones()[i]) {
+        keep_touching(i);
         if (o.style_eval) {
           const humanoid::HumanoidPose& p = env.pose(i);
           motion::MotionFrame f;

@@ -82,6 +82,10 @@ TEST(SyntheticCatalogTest, MalformedCatalogueNamesFileFieldAndExpectation) {
   EXPECT_NE(e.find("floor_getup.recipes[1].start"), std::string::npos) << e;
   EXPECT_NE(e.find("\"supine\" or \"prone\""), std::string::npos) << e;
 
+  e = ErrorWith("/seats/2/extra_heights", nlohmann::json::array({0.1}));
+  EXPECT_NE(e.find("seats[2].extra_heights"), std::string::npos) << e;
+  EXPECT_NE(e.find("(0.2, 1.0)"), std::string::npos) << e;
+
   e = ErrorWith("/floor_getup/recipes/0/key", 1);  // floor get-ups have no pose edits
   EXPECT_NE(e.find("floor_getup.recipes[0].key"), std::string::npos) << e;
 }
