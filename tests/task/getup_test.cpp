@@ -131,7 +131,15 @@ TEST(GetUpSkillTest, ReferenceStartsSeatedOrLying) {
         0.5 * (b.pos[humanoid::kLeftFoot] + b.pos[humanoid::kRightFoot]).head<2>();
     if (getup->start(i) == GetUpSkill::kSeatStart) {
       EXPECT_NEAR((getup->stand_point(i) - feet).norm(), 0.0, 1e-9) << i;
+      EXPECT_FALSE(getup->furniture_stand(i)) << i;
     } else {
+      EXPECT_TRUE(getup->furniture_stand(i)) << i;
+      // Snapshots keep the flag; one from before it reads as a seat's or the floor's.
+      const std::vector<double> saved = getup->SaveEnvState(i);
+      getup->LoadEnvState(i, std::vector<double>(saved.begin(), saved.end() - 1));
+      EXPECT_FALSE(getup->furniture_stand(i)) << i;
+      getup->LoadEnvState(i, saved);
+      EXPECT_TRUE(getup->furniture_stand(i)) << i;
       ASSERT_FALSE(g.stand_points.empty());
       double nearest = 1e9;
       for (const auto& p : g.stand_points)
@@ -280,7 +288,8 @@ TEST(GetUpSkillTest, BackplayStartsRisenAndReachesBackWithSuccess) {
   getup->SetBackplayLevel(0, 0.0);
   getup->LoadEnvState(0, saved);
   EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.75);
-  const std::vector<double> old(saved.begin(), saved.end() - 2);
+  // (Each snapshot ends with the furniture_stand flag, then backplay's two levels before it.)
+  const std::vector<double> old(saved.begin(), saved.end() - 3);
   getup->LoadEnvState(0, old);
   EXPECT_EQ(getup->backplay_level(0), 0.0);
   // Fall-state episodes leave the level alone.
@@ -347,9 +356,12 @@ TEST(GetUpSkillTest, FloorClipsKeepTheirOwnBackplayLevel) {
   getup->SetBackplayLevel(0, 0.0, /*floor=*/true);
   getup->LoadEnvState(0, saved);
   EXPECT_DOUBLE_EQ(getup->floor_backplay_level(0), 0.75);
-  getup->LoadEnvState(0, std::vector<double>(saved.begin(), saved.end() - 1));
+  getup->LoadEnvState(0, std::vector<double>(saved.begin(), saved.end() - 2));
   EXPECT_EQ(getup->floor_backplay_level(0), 0.0);
   EXPECT_DOUBLE_EQ(getup->backplay_level(0), 0.25);
+  // Without the furniture_stand flag (the last value) the levels still load.
+  getup->LoadEnvState(0, std::vector<double>(saved.begin(), saved.end() - 1));
+  EXPECT_EQ(getup->floor_backplay_level(0), 0.75);
 }
 
 // A seat's height may differ from the clip's by up to kMaxClipHeightMismatch, and the clip is
@@ -477,6 +489,10 @@ TEST(GetUpSkillTest, RewardPhasesAndStandingSuccess) {
   // Standing at the stand point: the full term.
   Rise up{humanoid::kDefaultRootHeight, 1.6, 1.0, 1.0, {0, 0}};
   EXPECT_NEAR(GetUpSkill::RiseReward(up, {0, 0}, head), 1.0, 1e-12);
+  // Standing 0.3 m from the stand point: S = exp(−k·0.09), k = 2 unless given (beside furniture).
+  Rise off{humanoid::kDefaultRootHeight, 1.6, 1.0, 1.0, {0.3, 0}};
+  EXPECT_NEAR(GetUpSkill::RiseReward(off, {0, 0}, head), 0.85 + 0.15 * std::exp(-0.18), 1e-12);
+  EXPECT_NEAR(GetUpSkill::RiseReward(off, {0, 0}, head, 10.0), 0.85 + 0.15 * std::exp(-0.9), 1e-12);
   // Half up: each term by hand.
   Rise half{0.49, 1.0, 0.5, 0.2, {0.5, 0}};
   EXPECT_NEAR(

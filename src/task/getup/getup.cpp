@@ -94,6 +94,8 @@ void GetUpParams::Validate() const {
   Require(backplay_end >= 0 && backplay_end <= 1, "getup_backplay_end",
           "a fraction in [0, 1] (0 = no backplay)");
   Require(backplay_step > 0 && backplay_step <= 1, "getup_backplay_step", "a step in (0, 1]");
+  Require(furniture_stand_sharpness > 0, "getup_furniture_stand_sharpness",
+          "a positive factor (1/m²)");
 }
 
 GetUpSkill::GetUpSkill(const SkillConfig& config, const SkillContext& context)
@@ -171,8 +173,8 @@ GetUpSkill::RiseInputs GetUpSkill::RiseInputsOf(const humanoid::BodyStates& b) {
   return x;
 }
 
-double GetUpSkill::RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand,
-                              double head_height) {
+double GetUpSkill::RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand, double head_height,
+                              double stand_sharpness) {
   const double dp = std::max(humanoid::kDefaultRootHeight - x.pelvis_z, 0.0);
   const double dh = std::max(head_height - x.head_z, 0.0);
   const double height = 0.4 * std::exp(-20.0 * dp * dp) + 0.3 * std::exp(-8.0 * dh * dh) +
@@ -180,7 +182,7 @@ double GetUpSkill::RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand,
   const double upright = 0.6 + 0.2 * std::max(x.pelvis_up, 0.0) + 0.2 * std::max(x.torso_up, 0.0);
   const double balance = std::exp(-10.0 * (x.upper_xy - x.feet_xy).squaredNorm());
   return upright * height * (0.6 + 0.4 * balance) +
-         0.15 * std::exp(-2.0 * (stand - x.pelvis_xy).squaredNorm());
+         0.15 * std::exp(-stand_sharpness * (stand - x.pelvis_xy).squaredNorm());
 }
 
 Eigen::Vector3d GetUpSkill::FootTarget(const Eigen::Vector2d& stand,
@@ -319,6 +321,7 @@ bool GetUpSkill::BeginInstruction(const sim::EnvView& view, const InstructionTar
 void GetUpSkill::StartGetUp(int i, const humanoid::BodyStates& b) {
   const Eigen::Vector2d pelvis = b.pos[humanoid::kPelvis].head<2>();
   getup_[i].stand = pelvis;
+  getup_[i].furniture_stand = false;
   const ObjectGeometry& g = geometry(i);
   const Eigen::Vector3d& l = b.pos[humanoid::kLeftFoot];
   const Eigen::Vector3d& r = b.pos[humanoid::kRightFoot];
@@ -335,6 +338,7 @@ void GetUpSkill::StartGetUp(int i, const humanoid::BodyStates& b) {
     for (const auto& s : g.stand_points)
       if ((s.head<2>() - pelvis).squaredNorm() < best)
         best = (s.head<2>() - pelvis).squaredNorm(), getup_[i].stand = s.head<2>();
+    getup_[i].furniture_stand = true;
   }
   getup_[i].phase = kFeetPhase;
   env_[i].hold = 0;
@@ -367,7 +371,9 @@ sim::TaskStepResult GetUpSkill::Step(const sim::EnvView& view) {
       SetGetUpGoals(i, b, &sq, &mx);
     }
   } else {
-    const double rise = RiseReward(RiseInputsOf(b), getup_[i].stand, head_height_);
+    const double k =
+        getup_[i].furniture_stand ? config_.getup.furniture_stand_sharpness : kStandSharpness;
+    const double rise = RiseReward(RiseInputsOf(b), getup_[i].stand, head_height_, k);
     r = kFeetPhaseWeight +
         (1.0 - kFeetPhaseWeight) * ((1.0 - kClearWeight) * rise + (clear ? kClearWeight : 0.0));
   }
@@ -390,6 +396,11 @@ void GetUpState::Serialize(StateArchive* a) {
       *level = 0;
     *level = std::clamp(*level, 0.0, 1.0);
   }
+  // And from before the furniture stand flag: a seat's or the floor's stand point.
+  if (!a->loading() || a->left() > 0)
+    a->Flag("furniture_stand", &furniture_stand);
+  else
+    furniture_stand = false;
 }
 
 void GetUpSkill::SerializeTaskState(int i, StateArchive* a) { getup_[i].Serialize(a); }

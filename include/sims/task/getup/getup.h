@@ -28,7 +28,8 @@
 //     H = 0.4·exp(−20·dp²) + 0.3·exp(−8·dh²) + 0.15·exp(−2·dh²), dp = max(h*_p − z_pelvis, 0),
 //     dh = max(h*_h − z_head, 0), U = 0.6 + 0.2·max(up_pelvis, 0) + 0.2·max(up_torso, 0),
 //     B = exp(−10·‖m − f‖²) with m the mean of the pelvis, torso and head (xy) and f the feet's
-//     midpoint, S = exp(−2·‖s − x_pelvis‖²); h*_p, h*_h the standing pelvis and head heights,
+//     midpoint, S = exp(−k·‖s − x_pelvis‖²) (k = 2, or getup_furniture_stand_sharpness
+//     beside furniture); h*_p, h*_h the standing pelvis and head heights,
 //     up the bodies' up axes (z components). History: a pelvis-only reward had a stable
 //     half-way optimum (pelvis at 0.68 m, torso folded, head at pelvis height; first
 //     campaign, 0 % success), hence the head and upright factors. The next form (0.5 + 0.5·
@@ -65,6 +66,9 @@ inline constexpr double kStandDiskRadius = 0.3;
 inline constexpr double kFeetPhaseWeight = 0.2;
 /// Share of the rise-phase reward paid only while standing clear (the success test).
 inline constexpr double kClearWeight = 0.2;
+/// k of the stand-point term exp(−k·d²) in RiseReward (GetUpParams::furniture_stand_sharpness
+/// for stand points beside furniture).
+inline constexpr double kStandSharpness = 2.0;
 
 /// A precomputed fall state: the pose (root xy at the origin) and how far its bodies reach
 /// from the root horizontally, for placing it clear of furniture.
@@ -80,6 +84,7 @@ struct GetUpState {
   Eigen::Vector2d stand = Eigen::Vector2d::Zero();  ///< Stand point (world xy).
   double backplay = 0;                              ///< Furniture backplay level in [0, 1].
   double floor_backplay = 0;                        ///< Floor-clip backplay level in [0, 1].
+  bool furniture_stand = false;  ///< The stand point is the object's free floor point.
 
   /// Lists the fields.
   void Serialize(StateArchive* a);
@@ -123,6 +128,8 @@ class GetUpSkill : public ObjectSkill {
   Start start(int env_id) const { return static_cast<Start>(getup_[env_id].start); }
   /// Stand point of env i (world xy).
   const Eigen::Vector2d& stand_point(int env_id) const { return getup_[env_id].stand; }
+  /// True when env i's stand point is its object's free floor point (see GetUpState).
+  bool furniture_stand(int env_id) const { return getup_[env_id].furniture_stand; }
   /// Env i's backplay level in [0, 1] for furniture clips (getup_backplay_end).
   double backplay_level(int env_id) const { return getup_[env_id].backplay; }
   /// Env i's backplay level in [0, 1] for floor clips.
@@ -154,7 +161,8 @@ class GetUpSkill : public ObjectSkill {
   static RiseInputs RiseInputsOf(const humanoid::BodyStates& b);
   /// The rise-phase reward term in [0, 1] (see the file comment); `head_height` is the
   /// standing head height.
-  static double RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand, double head_height);
+  static double RiseReward(const RiseInputs& x, const Eigen::Vector2d& stand, double head_height,
+                           double stand_sharpness = kStandSharpness);
   /// Head height of the default (standing) pose (m).
   double default_head_height() const { return head_height_; }
   /// Nearest point of the floor disk around `stand` to a foot at p (at foot rest height).
