@@ -1184,6 +1184,22 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
     }
   }
 
+  // A seat recipe's sit-down and get-up on one seat (names + suffix).
+  auto add_seat_clips = [&](const SeatRecipe& r, const FurnitureSpec& seat, int v,
+                            const std::string& suffix) {
+    if (wanted("sit")) {
+      MotionMeta meta = Meta(r.sit, "sit", v, {});
+      meta.name += suffix;
+      out.push_back(
+          SitDown(seat, r.sit.lean, r.sit.sit_time, r.sit.hold, meta, fps, rng.NextU64()));
+    }
+    if (wanted("getup")) {
+      MotionMeta meta = Meta(r.getup, "getup", v, {});
+      meta.name += suffix;
+      out.push_back(RiseFromSeat(seat, r.getup.lean, r.getup.sit_time, r.getup.hold, meta, fps,
+                                 rng.NextU64()));
+    }
+  };
   if (wanted("sit") || wanted("getup")) {
     for (const SeatRecipe& r : catalog.seats) {
       for (int v = 0; v < options.variants; ++v) {
@@ -1191,14 +1207,7 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
         const FurnitureSpec seat = PlaceSeat(
             s.height + (v == 0 ? 0.0 : rng.Uniform(s.height_jitter[0], s.height_jitter[1])),
             s.depth, s.width);
-        if (wanted("sit")) {
-          out.push_back(SitDown(seat, r.sit.lean, r.sit.sit_time, r.sit.hold,
-                                Meta(r.sit, "sit", v, {}), fps, rng.NextU64()));
-        }
-        if (wanted("getup")) {
-          out.push_back(RiseFromSeat(seat, r.getup.lean, r.getup.sit_time, r.getup.hold,
-                                     Meta(r.getup, "getup", v, {}), fps, rng.NextU64()));
-        }
+        add_seat_clips(r, seat, v, "");
       }
     }
   }
@@ -1393,19 +1402,7 @@ std::vector<MotionClip> GenerateSyntheticClips(const SyntheticCatalog& catalog,
   for (const SeatRecipe& r : catalog.seats) {
     for (double h : r.extra_heights) {
       const FurnitureSpec seat = PlaceSeat(h, r.seat.depth, r.seat.width);
-      const std::string suffix = "_h" + std::to_string(std::lround(100 * h));
-      if (wanted("sit")) {
-        MotionMeta meta = Meta(r.sit, "sit", 0, {});
-        meta.name += suffix;
-        out.push_back(
-            SitDown(seat, r.sit.lean, r.sit.sit_time, r.sit.hold, meta, fps, rng.NextU64()));
-      }
-      if (wanted("getup")) {
-        MotionMeta meta = Meta(r.getup, "getup", 0, {});
-        meta.name += suffix;
-        out.push_back(RiseFromSeat(seat, r.getup.lean, r.getup.sit_time, r.getup.hold, meta, fps,
-                                   rng.NextU64()));
-      }
+      add_seat_clips(r, seat, 0, "_h" + std::to_string(std::lround(100 * h)));
     }
   }
   return out;

@@ -496,32 +496,24 @@ int ObjectSkill::ChooseFurnitureClip(const std::vector<int>& clips, const Object
   if (!context_.motions) return -1;
   // Clips made for the object's own kind come first: a sofa's seated pose sits deep, and on a
   // small stool of the same height it put the pelvis over the back edge (it tipped over).
-  std::vector<int> fitting, own_kind;
-  std::vector<ClipPlacement> placements, own_placements;
+  std::vector<std::pair<int, ClipPlacement>> fitting, own_kind;
   for (int c : clips) {
     Eigen::Vector2d p_clip;
     double yaw_clip = 0, dz = 0;
     const motion::MotionClip& clip = context_.motions->clip(c);
     if (!ClipFurnitureFrame(clip, g, lateral, &p_clip, &yaw_clip, &dz)) continue;
     if (dz < -kMaxClipHeightMismatch || dz > max_raise) continue;
-    const ClipPlacement p =
-        ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz);
-    fitting.push_back(c);
-    placements.push_back(p);
+    fitting.emplace_back(
+        c, ClipPlacement::Align(g.X_WO.translation().head<2>(), g.yaw, p_clip, yaw_clip, dz));
     const auto& kinds = clip.meta().furniture;
-    if (std::find(kinds.begin(), kinds.end(), g.category) != kinds.end()) {
-      own_kind.push_back(c);
-      own_placements.push_back(p);
-    }
+    if (std::find(kinds.begin(), kinds.end(), g.category) != kinds.end())
+      own_kind.push_back(fitting.back());
   }
-  if (!own_kind.empty()) {
-    fitting.swap(own_kind);
-    placements.swap(own_placements);
-  }
-  if (fitting.empty()) return -1;
-  const int k = static_cast<int>(rng.UniformInt(static_cast<int64_t>(fitting.size())));
-  *placement = placements[k];
-  return fitting[k];
+  const auto& pool = own_kind.empty() ? fitting : own_kind;
+  if (pool.empty()) return -1;
+  const auto& [clip, p] = pool[rng.UniformInt(static_cast<int64_t>(pool.size()))];
+  *placement = p;
+  return clip;
 }
 
 bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::InitialState* init) {
