@@ -76,6 +76,13 @@ FootSliding FootSlidingMeter::Result() const {
   return s;
 }
 
+void ActionRateMeter::Add(const double* before, const double* now, int n) {
+  for (int j = 0; j < n; ++j) sum_sq_ += (now[j] - before[j]) * (now[j] - before[j]);
+  count_ += n;
+}
+
+double ActionRateMeter::Rms() const { return count_ ? std::sqrt(sum_sq_ / count_) : 0.0; }
+
 void FootSlidingMeter::AddRecord(const io::MotionRecord& record) {
   const double dt = 1.0 / record.fps;
   for (size_t t = 1; t < record.frames.size(); ++t)

@@ -233,6 +233,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
       {"mean_length", mean_length},
       {"foot_sliding_m_per_s", foot_sliding},
       {"foot_sliding_ratio", foot_sliding_ratio},
+      {"action_rate_rms", action_rate_rms},
       {"control_dt", control_dt},
       {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
       {"reference_starts", reference_starts},
@@ -364,6 +365,10 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   };
   std::vector<std::array<Eigen::Vector3d, 2>> feet_before(n_env);
   for (int i = 0; i < n_env; ++i) feet_before[i] = feet(i);
+  // Chatter: the policy's PD targets against its previous step's in the same trial.
+  std::vector<std::array<double, humanoid::kNumDofs>> targets_before(n_env);
+  std::vector<char> has_targets(n_env, 0);
+  ActionRateMeter action_rate;
   // --end-states: each env's last state before a reset and the object it was on (a reset may
   // pick another object).
   const auto* object_skill = dynamic_cast<const task::ObjectSkill*>(setup.skill.get());
@@ -426,6 +431,14 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   while (finished < o.trials) {
     o.ablation.Apply(segments, n_env, env.obs_dim(), env.observations());
     policy.Act(env.observations(), n_env, actions.data());
+    for (int i = 0; i < n_env; ++i) {
+      if (trial[i] < 0) continue;
+      std::array<double, humanoid::kNumDofs> now;
+      setup.context.humanoid->ActionToTargets(actions.data() + i * env.action_dim(), now.data());
+      if (has_targets[i]) action_rate.Add(targets_before[i].data(), now.data(), humanoid::kNumDofs);
+      targets_before[i] = now;
+      has_targets[i] = 1;
+    }
     env.Step(actions.data());
     for (int i = 0; i < n_env; ++i) {
       const std::array<Eigen::Vector3d, 2> now = feet(i);
@@ -468,6 +481,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
         }
         if (!motion[i].empty()) st.generated.push_back(PoseFeatures(record.Finish(), 3));
       }
+      has_targets[i] = 0;
       t.fell = env.end_reasons()[i] == sim::EndReason::kFall ||
                env.end_reasons()[i] == sim::EndReason::kUnstable;
       t.force_end = env.end_reasons()[i] == sim::EndReason::kTaskTerminate;
@@ -546,6 +560,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   const FootSliding slid = sliding.Result();
   rep.foot_sliding = slid.mean_speed;
   rep.foot_sliding_ratio = slid.sliding_ratio;
+  rep.action_rate_rms = action_rate.Rms();
   rep.time_to_success = successes ? rep.time_to_success / successes : 0.0;
   for (const auto& t : rep.results) {
     if (t.start.empty()) continue;

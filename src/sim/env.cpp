@@ -57,6 +57,9 @@ void EnvConfig::Validate() const {
   Require(recovery_steps >= 1, "recovery_steps", "at least 1 step");
   Require(action_smoothing >= 0 && action_smoothing <= kMaxActionSmoothing, "action_smoothing",
           SmoothingRange());
+  Require(action_rate_weight >= 0 && action_rate_weight <= 1, "action_rate_weight",
+          "a share in [0, 1]");
+  Require(action_rate_scale > 0, "action_rate_scale", "a positive scale (1/rad²)");
 }
 
 void CheckActionSmoothing(double alpha, std::string_view source, std::string_view field) {
@@ -285,8 +288,10 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   mjData* d = s.data.get();
   humanoid_->ActionToTargets(action, s.targets);
   const double alpha = action_smoothing_[i];
+  double rate_sq = 0;
   for (int j = 0; j < humanoid::kNumDofs; ++j) {
     double& held = d->ctrl[humanoid_->actuator_id(j)];
+    rate_sq += (s.targets[j] - held) * (s.targets[j] - held);
     held = alpha > 0 ? alpha * held + (1 - alpha) * s.targets[j] : s.targets[j];
   }
   // The position/velocity stage of the state we start from is already computed (by mj_forward
@@ -328,6 +333,11 @@ void BatchedEnv::StepEnv(int i, const float* action) {
     }
   }
 
+  const double w_rate = config_.action_rate_weight;
+  if (w_rate > 0)
+    tr.reward = static_cast<float>((1 - w_rate) * tr.reward +
+                                   w_rate * std::exp(-config_.action_rate_scale * rate_sq /
+                                                     humanoid::kNumDofs));
   rewards_[i] = reason == kUnstable ? 0.0f : tr.reward;
   successes_[i] = tr.success ? 1 : 0;
   completions_[i] = reason != kUnstable && tr.completed ? 1 : 0;

@@ -23,6 +23,17 @@ io::MotionRecord Standing(double speed, int frames = 31, Eigen::Vector3d start =
   return b.Finish();
 }
 
+// Two pairs of two targets: moves (0.3, 0.4) and (0, 0) give √((0.09 + 0.16) / 4) = 0.25 rad.
+TEST(MotionMetricsTest, ActionRateIsTheRmsTargetChange) {
+  ActionRateMeter m;
+  EXPECT_EQ(m.Rms(), 0.0);
+  const double a[2] = {0.1, -0.2}, b[2] = {0.4, 0.2};
+  m.Add(a, b, 2);
+  EXPECT_NEAR(m.Rms(), std::sqrt(0.25 / 2), 1e-12);
+  m.Add(b, b, 2);
+  EXPECT_NEAR(m.Rms(), 0.25, 1e-12);
+}
+
 TEST(MotionMetricsTest, FootSlidingOfAHandMadeGlide) {
   EXPECT_NEAR(MeasureFootSliding(Standing(0.0)).mean_speed, 0.0, 1e-9);
   const auto s = MeasureFootSliding(Standing(0.3));

@@ -141,6 +141,9 @@ TEST(PolicyEvalTest, RecordWritesTheFirstTrialsMotions) {
   EXPECT_NEAR(all.foot_sliding, total / pairs, 1e-3);
   EXPECT_GT(all.foot_sliding, 0.0);
   EXPECT_TRUE(all.ToJson().contains("foot_sliding_m_per_s"));
+  // The untrained policy's targets move from step to step.
+  EXPECT_GT(all.action_rate_rms, 0.0);
+  EXPECT_TRUE(all.ToJson().contains("action_rate_rms"));
 }
 
 // --end-states keeps where each sit trial that did not fall ended, relative to its seat.

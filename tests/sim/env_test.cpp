@@ -119,6 +119,51 @@ TEST(EnvTest, ActionSmoothingBlendsWithTheHeldTargets) {
   EXPECT_NE(e.find("[0, 0.9]"), std::string::npos) << e;
 }
 
+// A task that pays a fixed reward every step.
+class FixedRewardTask : public GoalTask {
+ public:
+  TaskStepResult Step(const EnvView&) override {
+    TaskStepResult r;
+    r.reward = 0.6f;
+    return r;
+  }
+};
+
+// action_rate_weight pays a share of the reward for steady PD targets: (1 − w)·r_task +
+// w·exp(−k·mean_j Δ_j²), Δ the new target minus the held one (after a reset: the initial
+// pose); repeating an action pays the full share; out-of-range values are refused by name.
+TEST(EnvTest, ActionRateSharePaysForSteadyTargets) {
+  EnvConfig c = SmallConfig(1, 1);
+  c.action_rate_weight = 0.25;
+  c.action_rate_scale = 10.0;
+  BatchedEnv env(MakeHumanoid(), c, std::make_unique<FixedRewardTask>());
+  env.Reset();
+  const humanoid::Humanoid& h = *MakeHumanoid();
+  double mean_sq = 0;
+  Rng rng(5);
+  const std::vector<float> a = RandomActions(rng, 1, 0.3);
+  std::vector<double> target(humanoid::kNumDofs);
+  h.ActionToTargets(a.data(), target.data());
+  for (int j = 0; j < humanoid::kNumDofs; ++j) {
+    const double held = env.View(0).data->ctrl[h.actuator_id(j)];
+    mean_sq += (target[j] - held) * (target[j] - held) / humanoid::kNumDofs;
+  }
+  ASSERT_GT(mean_sq, 1e-3);
+  env.Step(a.data());
+  ASSERT_FALSE(env.dones()[0]);
+  EXPECT_NEAR(env.rewards()[0], 0.75 * 0.6 + 0.25 * std::exp(-10.0 * mean_sq), 1e-6);
+  env.Step(a.data());
+  EXPECT_NEAR(env.rewards()[0], 0.75 * 0.6 + 0.25, 1e-6) << "the same targets again: no jump";
+
+  c.action_rate_weight = 1.5;
+  std::string e = sims::testing::ErrorOf([&] { BatchedEnv bad(MakeHumanoid(), c); });
+  EXPECT_NE(e.find("action_rate_weight"), std::string::npos) << e;
+  c.action_rate_weight = 0.1;
+  c.action_rate_scale = 0;
+  e = sims::testing::ErrorOf([&] { BatchedEnv bad(MakeHumanoid(), c); });
+  EXPECT_NE(e.find("action_rate_scale"), std::string::npos) << e;
+}
+
 // Rotating the whole world about z (positions, orientations, velocities) must leave the
 // local observations unchanged.
 TEST(EnvTest, ObservationsAreHeadingInvariant) {

@@ -49,6 +49,20 @@ class FootSlidingMeter {
   int fast_ = 0, pairs_ = 0;
 };
 
+/// Chatter: the RMS change of PD targets (rad) from one control step to the next, pooled over
+/// joints and step pairs.
+class ActionRateMeter {
+ public:
+  /// Counts the move of `n` targets from `before` to `now`.
+  void Add(const double* before, const double* now, int n);
+  /// RMS change so far (0 before any pair).
+  double Rms() const;
+
+ private:
+  double sum_sq_ = 0;
+  int64_t count_ = 0;
+};
+
 /// Foot sliding of a recorded motion.
 FootSliding MeasureFootSliding(const io::MotionRecord& record, double contact_height = 0.08);
 

@@ -135,6 +135,9 @@ struct PolicyEvalReport {
   /// Mean horizontal foot speed while a foot is down, over all trials (eval::FootSliding).
   double foot_sliding = 0;
   double foot_sliding_ratio = 0;  ///< Share of those foot moves faster than 0.1 m/s.
+  /// RMS change of the policy's PD targets from one control step to the next within a trial
+  /// (rad, over joints and steps): chatter, which the feet show as sliding.
+  double action_rate_rms = 0;
   sim::ObsAblation ablation;      ///< Inputs that were withheld.
   double reference_starts = 0;    ///< Share of trials asked to start from motion clips.
   double action_smoothing = 0;    ///< The action smoothing α the trials ran with.

@@ -42,6 +42,13 @@ struct EnvConfig {
   /// (after a reset: the initial pose), α·held + (1 − α)·new: damps a policy whose action
   /// jumps between steps (the feet tapping in place). 0 = off; at most kMaxActionSmoothing.
   double action_smoothing = 0.0;
+  /// Share w of each step's reward paid for steady PD targets: r = (1 − w)·r_task +
+  /// w·exp(−action_rate_scale·mean_j Δ_j²), Δ_j the new target of joint j minus the one its
+  /// actuator held (rad). Why: the trained policies chatter (targets jumping ~0.2–0.5 rad rms
+  /// per step, joint velocities uncorrelated step to step), which the feet show as sliding and
+  /// the discriminator as a trivial tell. 0 = off.
+  double action_rate_weight = 0.0;
+  double action_rate_scale = 10.0;  ///< 1/rad²: a 0.3 rad rms jump pays e^−0.9 at 10.
 
   /// Lists the fields for JSON binding.
   template <class A>
@@ -63,6 +70,8 @@ struct EnvConfig {
     a->Visit(SIMS_NVP(recovery_episode_prob));
     a->Visit(SIMS_NVP(recovery_steps));
     a->Visit(SIMS_NVP(action_smoothing));
+    a->Visit(SIMS_NVP(action_rate_weight));
+    a->Visit(SIMS_NVP(action_rate_scale));
   }
   /// Throws FieldError on out-of-range values.
   void Validate() const;
