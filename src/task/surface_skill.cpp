@@ -53,7 +53,8 @@ void SurfaceSkill::SampleTask(int i, Rng& rng) {
                    g.ToWorld(task_.anchor_local(g, lateral_[i])).head<2>());
 }
 
-double SurfaceSkill::UpdateGoals(int i, const humanoid::BodyStates& b, double* success_distance) {
+double SurfaceSkill::UpdateGoals(int i, const humanoid::BodyStates& b, double* success_distance,
+                                 double* contact_error) {
   const ObjectGeometry& g = geometry(i);
   const scene::Scene& s = *context_.scene;
   ClearGoals(i);
@@ -62,6 +63,7 @@ double SurfaceSkill::UpdateGoals(int i, const humanoid::BodyStates& b, double* s
   SetGoal(i, humanoid::kCjPelvis, m);
   double sum = (m - x).squaredNorm();
   double worst = (m - x).norm();
+  *contact_error = worst;
   const std::vector<int>& parts = extra_parts_[object(i)];
   if (!parts.empty()) {
     const Eigen::Vector3d h = humanoid::ContactJointPosition(b, task_.extra_joint);
@@ -73,22 +75,27 @@ double SurfaceSkill::UpdateGoals(int i, const humanoid::BodyStates& b, double* s
     }
     SetGoal(i, task_.extra_joint, best);
     sum += best_d2;
-    if (task_.extra_in_success) worst = std::max(worst, std::sqrt(best_d2));
+    if (task_.extra_in_success) {
+      worst = std::max(worst, std::sqrt(best_d2));
+      *contact_error = 0.5 * (*contact_error + std::sqrt(best_d2));
+    }
   }
   *success_distance = worst;
   return sum;
 }
 
 void SurfaceSkill::OnReset(const sim::EnvView& view, Rng&) {
-  double d = 0;
-  UpdateGoals(view.env_id, *view.bodies, &d);
-  env_[view.env_id].error = d;
+  double d = 0, error = 0;
+  UpdateGoals(view.env_id, *view.bodies, &d, &error);
+  env_[view.env_id].error = error;
 }
 
 sim::TaskStepResult SurfaceSkill::Step(const sim::EnvView& view) {
-  double d = 0;
-  const double sum = UpdateGoals(view.env_id, *view.bodies, &d);
-  return ContactRewardStep(view, sum, d, task_.wide_near_share);
+  double d = 0, error = 0;
+  const double sum = UpdateGoals(view.env_id, *view.bodies, &d, &error);
+  const sim::TaskStepResult r = ContactRewardStep(view, sum, d, task_.wide_near_share);
+  env_[view.env_id].error = error;
+  return r;
 }
 
 bool SurfaceSkill::ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) {

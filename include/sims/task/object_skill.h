@@ -132,7 +132,7 @@ bool ClipFurnitureFrame(const motion::MotionClip& clip, const ObjectGeometry& g,
 struct ObjectState {
   int object = 0;    ///< Index into objects() of the env's object.
   int hold = 0;      ///< Steps the success condition has held.
-  double error = 0;  ///< Success-test distance at the last step (m).
+  double error = 0;  ///< Contact error at the last step (m; goal_error()).
   Eigen::Vector3d target_W = Eigen::Vector3d::Zero();  ///< The episode's fixed target (world).
   Eigen::Vector2d anchor_W = Eigen::Vector2d::Zero();  ///< Its far anchor (world xy).
   double level = 1;                                    ///< Spawn-curriculum level in [0, 1].
@@ -169,7 +169,8 @@ class ObjectSkill : public Skill {
   const ObjectGeometry& geometry(int env_id) const { return objects_[env_[env_id].object]; }
   /// Makes env i use objects()[k] at its following resets (−1 = random again); FSM / eval.
   void SetObjectOverride(int env_id, int k);
-  /// The distance the success test compares with its threshold at the last step (m).
+  /// Contact error at the last step (m): the distance of the joint success requires, or the
+  /// mean over them (lie: pelvis and head; UniHSI's per-pair mean; success needs each one).
   double goal_error(int env_id) const { return env_[env_id].error; }
   /// goal_error(view.env_id).
   double goal_error(const sim::EnvView& view) const override { return env_[view.env_id].error; }

@@ -192,8 +192,9 @@ class Skill : public sim::TaskHook {
   /// the character's current state without resetting it. Returns false when the skill cannot
   /// pursue that target (e.g. an object without the part it needs).
   virtual bool BeginInstruction(const sim::EnvView& view, const InstructionTarget& target);
-  /// The distance (m) env view.env_id's success test compares with its threshold, for
-  /// evaluation and story metrics; 0 for a skill without one.
+  /// Env view.env_id's contact error (m) for evaluation and story metrics: the distance of the
+  /// goal joint success requires (the mean over them where there are several); 0 for a skill
+  /// without one.
   virtual double goal_error(const sim::EnvView& view) const;
   /// True when the skill's goal already holds before it acts (get-up: standing clear), so a
   /// story instruction of it ends at once as a success; default false.

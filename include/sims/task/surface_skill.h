@@ -55,8 +55,10 @@ class SurfaceSkill : public ObjectSkill {
   sim::TaskStepResult Step(const sim::EnvView& view) override;
 
   /// Updates env i's goals for body states `b`; returns Σ‖g_j − x_j‖² and sets the distance
-  /// the success test compares (the pelvis's, or the larger of both joints').
-  double UpdateGoals(int env_id, const humanoid::BodyStates& b, double* success_distance);
+  /// the success test compares (the pelvis's, or the larger of both joints') and the contact
+  /// error: the mean distance over the joints success requires (UniHSI's per-pair mean).
+  double UpdateGoals(int env_id, const humanoid::BodyStates& b, double* success_distance,
+                     double* contact_error);
   /// Env i's lateral choice (m along the seat; lie: the side, ±1).
   double lateral(int env_id) const { return lateral_[env_id]; }
   /// task.pelvis_part, or the fallback part on objects without it.
