@@ -24,6 +24,7 @@ void PpoConfig::Validate() const {
   Require(learning_rate > 0 && learning_rate < 1, "learning_rate", "a rate in (0, 1)");
   Require(critic_coef >= 0, "critic_coef", "a non-negative weight");
   Require(bounds_coef >= 0, "bounds_coef", "a non-negative weight");
+  Require(smooth_coef >= 0, "smooth_coef", "a non-negative weight");
   Require(grad_norm >= 0, "grad_norm", "a non-negative norm (0 = no clipping)");
   Require(obs_clip > 0, "obs_clip", "a positive clip");
   Require(warm_start_obs_count > 0, "warm_start_obs_count", "a positive sample count");

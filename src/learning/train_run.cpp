@@ -61,7 +61,8 @@ const std::vector<std::string>& CsvColumns() {
                                                 "success_rate_default",
                                                 "kl",
                                                 "learning_rate",
-                                                "curriculum_level"};
+                                                "curriculum_level",
+                                                "smooth_loss"};
   return cols;
 }
 
@@ -100,7 +101,8 @@ std::string CsvRow(const IterationStats& s, const IterationTiming& timing) {
                       s.success_rate_default,
                       s.kl,
                       s.learning_rate,
-                      s.curriculum_level};
+                      s.curriculum_level,
+                      s.smooth_loss};
   std::ostringstream out;
   out.precision(7);
   for (size_t i = 0; i < std::size(v); ++i) out << (i ? "," : "") << v[i];

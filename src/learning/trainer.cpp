@@ -9,6 +9,7 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <tuple>
@@ -124,11 +125,13 @@ struct Trainer::Impl {
     torch::Tensor obs, obs_norm, actions, log_probs, advantages, returns;
     torch::Tensor reward, style_reward;   // [T, N]
     torch::Tensor amp, amp_norm, styles;  // AMP only
+    // Each sample's successor in its episode (t + 1, same env) and whether it has one.
+    torch::Tensor next_index, next_valid;
   };
   /// Loss sums over minibatches (each weighted by this rank's share).
   struct UpdateTotals {
-    double actor = 0, critic = 0, bounds = 0, disc = 0, grad_penalty = 0, demo_accuracy = 0,
-           agent_accuracy = 0, clip_fraction = 0, kl = 0;
+    double actor = 0, critic = 0, bounds = 0, smooth = 0, disc = 0, grad_penalty = 0,
+           demo_accuracy = 0, agent_accuracy = 0, clip_fraction = 0, kl = 0;
     double minibatch_kl = 0;  // this rank's share of the last minibatch's KL
     int64_t steps = 0, disc_steps = 0, disc_samples = 0, minibatch = 0;
   };
@@ -550,6 +553,13 @@ Trainer::Impl::Batch Trainer::Impl::PrepareBatch(Timings* timing) {
   // obs_norm changes only after the update: normalise the whole batch once.
   b.obs_norm = obs_norm->Normalize(b.obs);
   b.actions = act_buf.reshape({T * N, act_dim});
+  // Sample t·N + i follows on at (t + 1)·N + i unless the episode ended at t (the next row is
+  // then a reset) or t is the horizon's last step.
+  b.next_index = torch::arange(T * N, torch::kLong) + N;
+  b.next_valid = torch::zeros({T, N});
+  if (T > 1) b.next_valid.slice(0, 0, T - 1).copy_((done_buf.slice(0, 0, T - 1) < 0.5).to(torch::kFloat));
+  b.next_valid = b.next_valid.reshape({T * N});
+  b.next_index = torch::where(b.next_valid > 0.5, b.next_index, torch::arange(T * N, torch::kLong));
   b.log_probs = logp_buf.reshape({T * N});
   const auto ret_f = returns.reshape({T * N});
   b.advantages = adv.reshape({T * N});
@@ -575,14 +585,28 @@ void Trainer::Impl::PpoLoss(const Batch& b, const torch::Tensor& idx, double sha
       ClippedSurrogateLoss(logp, old_logp, b.advantages.index_select(0, idx), ppo.clip);
   const auto critic = (v - b.returns.index_select(0, idx)).pow(2).mean();
   const auto bounds = BoundsLoss(mu);
+  // Temporal smoothness of the mean: measured always (the log's chatter figure), trained with
+  // smooth_coef > 0 (then the successor's mean carries gradients too, as in CAPS).
+  torch::Tensor smooth;
+  {
+    const auto next = b.next_index.index_select(0, idx);
+    const auto valid = b.next_valid.index_select(0, idx);
+    std::optional<torch::NoGradGuard> off;
+    if (ppo.smooth_coef <= 0) off.emplace();
+    const auto mu_next = ac->Mean(b.obs_norm.index_select(0, next), b.obs.index_select(0, next));
+    const auto per_sample = ((ppo.smooth_coef > 0 ? mu : mu.detach()) - mu_next).pow(2).mean(-1);
+    smooth = (per_sample * valid).sum() / valid.sum().clamp_min(1.0);
+  }
   // During the actor warm-up only the critic learns: a fresh value function (and value
   // normaliser) gives a warm-started actor meaningless advantages at first.
   const double actor_weight = iteration < ppo.actor_warmup_iterations ? 0.0 : 1.0;
-  const auto loss = actor_weight * (actor + ppo.bounds_coef * bounds) + ppo.critic_coef * critic;
+  auto loss = actor_weight * (actor + ppo.bounds_coef * bounds) + ppo.critic_coef * critic;
+  if (ppo.smooth_coef > 0) loss = loss + actor_weight * ppo.smooth_coef * smooth;
   (world == 1 ? loss : loss * share).backward();
   u->actor += actor.item<double>() * share;
   u->critic += critic.item<double>() * share;
   u->bounds += bounds.item<double>() * share;
+  u->smooth += smooth.item<double>() * share;
   u->clip_fraction += ClipFraction(logp.detach(), old_logp, ppo.clip) * share;
   // KL(old ‖ new) by the low-variance estimator E[(r − 1) − log r].
   const auto log_r = (logp.detach() - old_logp);
@@ -755,7 +779,8 @@ IterationStats Trainer::RunIteration() {
                    roll.default_success,
                    u.kl,
                    has_level ? level : 0.0,
-                   has_level ? 1.0 : 0.0};
+                   has_level ? 1.0 : 0.0,
+                   u.smooth};
   if (m.comm) m.comm->AllReduceSum(sums, static_cast<int64_t>(std::size(sums)));
   const double episodes = sums[4];
   const double batch_size = static_cast<double>(T * N * m.world);
@@ -774,6 +799,7 @@ IterationStats Trainer::RunIteration() {
   st.actor_loss = sums[8] / s;
   st.critic_loss = sums[9] / s;
   st.bounds_loss = sums[10] / s;
+  st.smooth_loss = sums[23] / s;
   const double ds = std::max<int64_t>(u.disc_steps, 1);
   st.disc_loss = sums[11] / ds;
   st.grad_penalty = sums[12] / ds;

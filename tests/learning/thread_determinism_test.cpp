@@ -79,7 +79,7 @@ TEST(ThreadDeterminismTest, AmpWalkTrainsBitIdenticallyOnOneAndTwoThreads) {
   }
   SetThreadCount(before);
   const auto cells = DeterministicCells(dirs[0] / "log.csv");
-  EXPECT_EQ(cells.size(), 3u * 25u);  // 3 rows × 25 non-timing columns
+  EXPECT_EQ(cells.size(), 3u * 26u);  // 3 rows × 26 non-timing columns
   EXPECT_EQ(cells, DeterministicCells(dirs[1] / "log.csv"));
   const std::string policy = ReadBytes(dirs[0] / "policy.pt");
   ASSERT_FALSE(policy.empty());

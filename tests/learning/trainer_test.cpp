@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 
 #include <gtest/gtest.h>
 #include <torch/torch.h>
@@ -57,6 +58,42 @@ TEST(TrainerTest, PpoLearnsPointMassReaching) {
   }
   EXPECT_GT(last, first + 0.2) << "first " << first << " last " << last;
   EXPECT_GT(last, 0.55);
+}
+
+// The temporal smoothness loss (CAPS) is measured whether or not it trains; with a weight it
+// makes the action mean change less between consecutive states while the task is still learnt
+// (fixed seeds, the same rollouts' start).
+TEST(TrainerTest, SmoothnessLossCalmsTheActionMean) {
+  auto run = [](double coef, double* first_reward, double* last_reward) {
+    LearnerConfig c = ToyConfig(false);
+    c.ppo.smooth_coef = coef;
+    Trainer t = MakeTrainer(c);
+    double last_smooth = 0;
+    *first_reward = *last_reward = 0;
+    const int iters = 60;
+    for (int i = 0; i < iters; ++i) {
+      const auto s = t.RunIteration();
+      EXPECT_GE(s.smooth_loss, 0.0);
+      if (i < 5) *first_reward += s.task_reward / 5;
+      if (i >= iters - 10) {
+        last_smooth += s.smooth_loss / 10;
+        *last_reward += s.task_reward / 10;
+      }
+    }
+    return last_smooth;
+  };
+  double first0 = 0, last0 = 0, first1 = 0, last1 = 0;
+  const double free = run(0.0, &first0, &last0);
+  const double smoothed = run(50.0, &first1, &last1);
+  std::cout << "smooth loss: coef 0 " << free << ", coef 50 " << smoothed << "; task reward "
+            << first0 << " -> " << last0 << " and " << first1 << " -> " << last1 << "\n";
+  EXPECT_GT(free, 0.0);
+  EXPECT_LT(smoothed, 0.5 * free);
+  EXPECT_GT(last1, first1 + 0.1) << "the smoothed policy still learns the task";
+  LearnerConfig bad = ToyConfig(false);
+  bad.ppo.smooth_coef = -1;
+  const std::string e = sims::testing::ErrorOf([&] { bad.ppo.Validate(); });
+  EXPECT_NE(e.find("smooth_coef"), std::string::npos) << e;
 }
 
 TEST(TrainerTest, CheckpointRestoresIdenticalActions) {

@@ -44,6 +44,12 @@ struct PpoConfig {
   double learning_rate = 1e-4;      ///< Adam lr (GPU: 2e-5 with 131k-sample batches).
   double critic_coef = 5.0;         ///< Value loss weight.
   double bounds_coef = 10.0;        ///< Action-mean bounds loss weight.
+  /// Weight of the temporal smoothness loss on the action mean (CAPS, Mysore et al. 2021):
+  /// mean over action dims of (μ(s_t) − μ(s_t+1))² for consecutive states of an episode in the
+  /// rollout. Why: the trained policies chatter (PD targets jumping 0.2–0.5 rad rms per step);
+  /// a reward for steady actions pays through noisy returns, this shapes the mean directly.
+  /// 0 = off (the loss is still measured and logged).
+  double smooth_coef = 0.0;
   double entropy_coef = 0.0;        ///< Entropy bonus (σ is fixed, so 0).
   double grad_norm = 1.0;           ///< Gradient-norm clip (0 = off).
   bool normalize_advantage = true;  ///< (A − μ)/(σ + 1e-8) batch-wide.
@@ -77,6 +83,7 @@ struct PpoConfig {
     a->Visit(SIMS_NVP(learning_rate));
     a->Visit(SIMS_NVP(critic_coef));
     a->Visit(SIMS_NVP(bounds_coef));
+    a->Visit(SIMS_NVP(smooth_coef));
     a->Visit(SIMS_NVP(entropy_coef));
     a->Visit(SIMS_NVP(grad_norm));
     a->Visit(SIMS_NVP(normalize_advantage));

@@ -33,6 +33,8 @@ struct IterationStats {
   double actor_loss = 0;              ///< Mean clipped surrogate loss.
   double critic_loss = 0;             ///< Mean value loss.
   double bounds_loss = 0;             ///< Mean bounds loss.
+  /// Mean (μ(s_t) − μ(s_t+1))² per action dim over consecutive rollout states (chatter).
+  double smooth_loss = 0;
   double disc_loss = 0;               ///< Mean discriminator classification loss.
   double grad_penalty = 0;            ///< Mean gradient penalty.
   double disc_acc_demo = 0;           ///< Discriminator accuracy on demo windows.
