@@ -557,7 +557,8 @@ Trainer::Impl::Batch Trainer::Impl::PrepareBatch(Timings* timing) {
   // then a reset) or t is the horizon's last step.
   b.next_index = torch::arange(T * N, torch::kLong) + N;
   b.next_valid = torch::zeros({T, N});
-  if (T > 1) b.next_valid.slice(0, 0, T - 1).copy_((done_buf.slice(0, 0, T - 1) < 0.5).to(torch::kFloat));
+  if (T > 1)
+    b.next_valid.slice(0, 0, T - 1).copy_((done_buf.slice(0, 0, T - 1) < 0.5).to(torch::kFloat));
   b.next_valid = b.next_valid.reshape({T * N});
   b.next_index = torch::where(b.next_valid > 0.5, b.next_index, torch::arange(T * N, torch::kLong));
   b.log_probs = logp_buf.reshape({T * N});

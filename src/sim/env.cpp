@@ -335,9 +335,9 @@ void BatchedEnv::StepEnv(int i, const float* action) {
 
   const double w_rate = config_.action_rate_weight;
   if (w_rate > 0)
-    tr.reward = static_cast<float>((1 - w_rate) * tr.reward +
-                                   w_rate * std::exp(-config_.action_rate_scale * rate_sq /
-                                                     humanoid::kNumDofs));
+    tr.reward = static_cast<float>(
+        (1 - w_rate) * tr.reward +
+        w_rate * std::exp(-config_.action_rate_scale * rate_sq / humanoid::kNumDofs));
   rewards_[i] = reason == kUnstable ? 0.0f : tr.reward;
   successes_[i] = tr.success ? 1 : 0;
   completions_[i] = reason != kUnstable && tr.completed ? 1 : 0;

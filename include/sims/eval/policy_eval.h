@@ -138,9 +138,9 @@ struct PolicyEvalReport {
   /// RMS change of the policy's PD targets from one control step to the next within a trial
   /// (rad, over joints and steps): chatter, which the feet show as sliding.
   double action_rate_rms = 0;
-  sim::ObsAblation ablation;      ///< Inputs that were withheld.
-  double reference_starts = 0;    ///< Share of trials asked to start from motion clips.
-  double action_smoothing = 0;    ///< The action smoothing α the trials ran with.
+  sim::ObsAblation ablation;    ///< Inputs that were withheld.
+  double reference_starts = 0;  ///< Share of trials asked to start from motion clips.
+  double action_smoothing = 0;  ///< The action smoothing α the trials ran with.
   /// Per start kind (skills with start labels, e.g. get-up's seat/bed/floor/fall).
   struct StartGroup {
     int trials = 0;              ///< Trials that started this way.

@@ -35,15 +35,15 @@ struct NetworkConfig {
 
 /// PPO settings.
 struct PpoConfig {
-  double gamma = 0.99;              ///< Discount.
-  double lambda = 0.95;             ///< GAE λ.
-  double clip = 0.2;                ///< Ratio clip ε.
-  int horizon = 32;                 ///< Steps per env per iteration.
-  int mini_epochs = 6;              ///< Passes over each batch.
-  int minibatch_size = 1024;        ///< Samples per gradient step (GPU: 16384).
-  double learning_rate = 1e-4;      ///< Adam lr (GPU: 2e-5 with 131k-sample batches).
-  double critic_coef = 5.0;         ///< Value loss weight.
-  double bounds_coef = 10.0;        ///< Action-mean bounds loss weight.
+  double gamma = 0.99;          ///< Discount.
+  double lambda = 0.95;         ///< GAE λ.
+  double clip = 0.2;            ///< Ratio clip ε.
+  int horizon = 32;             ///< Steps per env per iteration.
+  int mini_epochs = 6;          ///< Passes over each batch.
+  int minibatch_size = 1024;    ///< Samples per gradient step (GPU: 16384).
+  double learning_rate = 1e-4;  ///< Adam lr (GPU: 2e-5 with 131k-sample batches).
+  double critic_coef = 5.0;     ///< Value loss weight.
+  double bounds_coef = 10.0;    ///< Action-mean bounds loss weight.
   /// Weight of the temporal smoothness loss on the action mean (CAPS, Mysore et al. 2021):
   /// mean over action dims of (μ(s_t) − μ(s_t+1))² for consecutive states of an episode in the
   /// rollout. Why: the trained policies chatter (PD targets jumping 0.2–0.5 rad rms per step);

@@ -35,23 +35,23 @@ struct IterationStats {
   double bounds_loss = 0;             ///< Mean bounds loss.
   /// Mean (μ(s_t) − μ(s_t+1))² per action dim over consecutive rollout states (chatter).
   double smooth_loss = 0;
-  double disc_loss = 0;               ///< Mean discriminator classification loss.
-  double grad_penalty = 0;            ///< Mean gradient penalty.
-  double disc_acc_demo = 0;           ///< Discriminator accuracy on demo windows.
-  double disc_acc_agent = 0;          ///< Discriminator accuracy on policy/replay windows.
-  double clip_fraction = 0;           ///< Fraction of clipped ratios.
-  double kl = 0;                      ///< Mean KL(old ‖ new) per minibatch step.
-  double learning_rate = 0;           ///< The learning rate after this update.
-  double curriculum_level = 0;        ///< Mean curriculum level after the rollout (NaN: none).
-  double env_samples_per_s = 0;       ///< Collection throughput (incl. policy inference).
-  double train_samples_per_s = 0;     ///< Update throughput (samples × epochs / s).
-  double update_gflop = 0;            ///< Estimated GFLOP spent in the update.
-  double update_seconds = 0;          ///< Time spent in the update (PPO and discriminator).
-  double env_seconds = 0;             ///< Rollout time inside VecEnv::Step.
-  double inference_seconds = 0;       ///< Rollout time outside it (policy, value, buffers).
-  double disc_seconds = 0;            ///< Style rewards + discriminator loss forward/backward.
-  double ppo_seconds = 0;             ///< Advantages, PPO forward/backward, optimiser steps.
-  double iteration_seconds = 0;       ///< Wall time of the iteration.
+  double disc_loss = 0;            ///< Mean discriminator classification loss.
+  double grad_penalty = 0;         ///< Mean gradient penalty.
+  double disc_acc_demo = 0;        ///< Discriminator accuracy on demo windows.
+  double disc_acc_agent = 0;       ///< Discriminator accuracy on policy/replay windows.
+  double clip_fraction = 0;        ///< Fraction of clipped ratios.
+  double kl = 0;                   ///< Mean KL(old ‖ new) per minibatch step.
+  double learning_rate = 0;        ///< The learning rate after this update.
+  double curriculum_level = 0;     ///< Mean curriculum level after the rollout (NaN: none).
+  double env_samples_per_s = 0;    ///< Collection throughput (incl. policy inference).
+  double train_samples_per_s = 0;  ///< Update throughput (samples × epochs / s).
+  double update_gflop = 0;         ///< Estimated GFLOP spent in the update.
+  double update_seconds = 0;       ///< Time spent in the update (PPO and discriminator).
+  double env_seconds = 0;          ///< Rollout time inside VecEnv::Step.
+  double inference_seconds = 0;    ///< Rollout time outside it (policy, value, buffers).
+  double disc_seconds = 0;         ///< Style rewards + discriminator loss forward/backward.
+  double ppo_seconds = 0;          ///< Advantages, PPO forward/backward, optimiser steps.
+  double iteration_seconds = 0;    ///< Wall time of the iteration.
 };
 
 /// PPO + AMP trainer.
