@@ -288,10 +288,11 @@ void BatchedEnv::StepEnv(int i, const float* action) {
   mjData* d = s.data.get();
   humanoid_->ActionToTargets(action, s.targets);
   const double alpha = action_smoothing_[i];
+  const double w_rate = config_.action_rate_weight;
   double rate_sq = 0;
   for (int j = 0; j < humanoid::kNumDofs; ++j) {
     double& held = d->ctrl[humanoid_->actuator_id(j)];
-    rate_sq += (s.targets[j] - held) * (s.targets[j] - held);
+    if (w_rate > 0) rate_sq += (s.targets[j] - held) * (s.targets[j] - held);
     held = alpha > 0 ? alpha * held + (1 - alpha) * s.targets[j] : s.targets[j];
   }
   // The position/velocity stage of the state we start from is already computed (by mj_forward
@@ -333,7 +334,6 @@ void BatchedEnv::StepEnv(int i, const float* action) {
     }
   }
 
-  const double w_rate = config_.action_rate_weight;
   if (w_rate > 0)
     tr.reward = static_cast<float>(
         (1 - w_rate) * tr.reward +

@@ -527,8 +527,7 @@ bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::I
 
 sim::TaskStepResult ObjectSkill::ContactRewardStep(const sim::EnvView& view, double goal_sum,
                                                    double d, double wide_share) {
-  ObjectState& e = env_[view.env_id];
-  e.error = d;
+  const ObjectState& e = env_[view.env_id];
   const Eigen::Vector2d root = view.pose->root_pos.head<2>();
   const bool at_target = (e.target_W.head<2>() - root).squaredNorm() <= kFarDistanceSq;
   const double r_far = at_target ? 1.0

@@ -85,17 +85,14 @@ double SurfaceSkill::UpdateGoals(int i, const humanoid::BodyStates& b, double* s
 }
 
 void SurfaceSkill::OnReset(const sim::EnvView& view, Rng&) {
-  double d = 0, error = 0;
-  UpdateGoals(view.env_id, *view.bodies, &d, &error);
-  env_[view.env_id].error = error;
+  double d = 0;
+  UpdateGoals(view.env_id, *view.bodies, &d, &env_[view.env_id].error);
 }
 
 sim::TaskStepResult SurfaceSkill::Step(const sim::EnvView& view) {
-  double d = 0, error = 0;
-  const double sum = UpdateGoals(view.env_id, *view.bodies, &d, &error);
-  const sim::TaskStepResult r = ContactRewardStep(view, sum, d, task_.wide_near_share);
-  env_[view.env_id].error = error;
-  return r;
+  double d = 0;
+  const double sum = UpdateGoals(view.env_id, *view.bodies, &d, &env_[view.env_id].error);
+  return ContactRewardStep(view, sum, d, task_.wide_near_share);
 }
 
 bool SurfaceSkill::ReferenceInit(int env_id, Rng& rng, sim::InitialState* init) {

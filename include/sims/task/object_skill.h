@@ -258,7 +258,7 @@ class ObjectSkill : public Skill {
   /// Contact reward towards the env's far anchor (r_far = 1 at the anchor or the target) with
   /// Σ‖g_j − x_j‖² = goal_sum, a `wide_share` (plus the config's) of the wide near kernel and
   /// the config's precise share (NearReward), and success when the measured distance d is
-  /// within the threshold.
+  /// within the threshold. The caller keeps the env's contact error (goal_error()).
   sim::TaskStepResult ContactRewardStep(const sim::EnvView& view, double goal_sum, double d,
                                         double wide_share = 0.0);
   /// Ends a step: success counter, success-held truncation, excessive-force termination.

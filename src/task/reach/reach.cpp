@@ -153,7 +153,8 @@ sim::TaskStepResult ReachSkill::Step(const sim::EnvView& view) {
   const int i = view.env_id;
   const double d2 =
       (target(i) - humanoid::ContactJointPosition(*view.bodies, hand_[i])).squaredNorm();
-  return ContactRewardStep(view, d2, std::sqrt(d2));
+  env_[i].error = std::sqrt(d2);
+  return ContactRewardStep(view, d2, env_[i].error);
 }
 
 void ReachSkill::SerializeTaskState(int i, StateArchive* a) {
