@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
   app.add_option("--reference-starts", o.reference_starts,
                  "share of trials started from motion clips as in training (0-1; default 0: "
                  "standing starts)");
+  app.add_option("--clutter", o.clutter,
+                 "share of the evaluation pieces with a table in front, as the stories' rooms "
+                 "have (0-1; default 0: lone pieces)");
   app.add_option("--action-smoothing", o.action_smoothing,
                  "action smoothing: each step's PD targets blended with the ones held before "
                  "by this factor (0-0.9), as a policy set's action_smoothing does (default: "

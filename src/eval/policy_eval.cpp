@@ -237,6 +237,7 @@ nlohmann::json PolicyEvalReport::ToJson() const {
       {"control_dt", control_dt},
       {"ablation", {{"no_text", ablation.no_text}, {"no_heightmap", ablation.no_heightmap}}},
       {"reference_starts", reference_starts},
+      {"clutter", clutter},
       {"action_smoothing", action_smoothing},
       {"results", per}};
   if (!by_start.empty()) {
@@ -290,6 +291,9 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
     ThrowInputError("--reference-starts", "reference_starts", "a share in [0, 1]",
                     std::to_string(o.reference_starts));
   sc.reference_init_prob = o.reference_starts;
+  if (!(o.clutter >= 0 && o.clutter <= 1))
+    ThrowInputError("--clutter", "clutter", "a share in [0, 1]", std::to_string(o.clutter));
+  sc.object.clutter_share = o.clutter;
   if (!sc.style_conditioned && o.reference_starts == 0 && !o.style_eval) sc.motion.manifest.clear();
   if (info.configure_eval && !o.training_starts) info.configure_eval(&sc);
   sim::EnvConfig ec = rc.env;
@@ -343,6 +347,7 @@ PolicyEvalReport EvaluatePolicy(const PolicyEvalOptions& o) {
   rep.control_dt = env.control_dt();
   rep.ablation = o.ablation;
   rep.reference_starts = o.reference_starts;
+  rep.clutter = o.clutter;
   rep.action_smoothing = ec.action_smoothing;
   rep.results.resize(o.trials);
   // Each env runs trial after trial; env i's k-th trial is a fixed trial index.

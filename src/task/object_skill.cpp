@@ -67,7 +67,47 @@ void ObjectParams::Validate() const {
   Require(handoff_share >= 0 && handoff_share <= 1, "handoff_share", "a share in [0, 1]");
   Require(handoff_share == 0 || !handoff_states.empty(), "handoff_states",
           "hand-off state files (eval_policy --end-states) when handoff_share > 0");
+  Require(clutter_share >= 0 && clutter_share <= 1, "clutter_share", "a share in [0, 1]");
+  Require(clutter_gap_min >= 0 && clutter_gap_max >= clutter_gap_min && clutter_gap_max <= 3,
+          "clutter_gap_max", "gaps with 0 ≤ clutter_gap_min ≤ clutter_gap_max ≤ 3 (m)");
+  if (clutter_share > 0) {
+    const auto names = [&](const char* c) {
+      return std::find(object_categories.begin(), object_categories.end(), c) !=
+             object_categories.end();
+    };
+    Require(!object_categories.empty() && !names("table") && !names("desk"), "object_categories",
+            "the target categories, without table or desk, when clutter_share > 0 (the clutter "
+            "tables must not become targets)");
+  }
 }
+
+namespace {
+
+// A table, desk or coffee table in front of `piece` (its +x is the front), `gap` from the
+// front face, its long side across the piece's front, shifted `lateral` along it.
+scene::Object ClutterTable(const scene::Object& piece, int kind, double gap, double lateral,
+                           const std::string& instance) {
+  scene::FurnitureParams p = scene::DefaultFurnitureParams(kind == 1 ? "desk" : "table");
+  if (kind == 2) p.width = 1.0, p.depth = 0.55, p.height = 0.45, p.seat_height = 0.45;
+  scene::Object t = scene::MakeFurniture(kind == 1 ? "desk" : "table", p, instance);
+  const scene::Aabb tb = t.LocalBounds();
+  const Eigen::Vector3d t_size = tb.max - tb.min;
+  // Turned so that its longer side runs along the piece's front.
+  const bool long_x = t_size.x() >= t_size.y();
+  const double half_depth = 0.5 * (long_x ? t_size.y() : t_size.x());
+  const scene::Aabb pb = piece.LocalBounds();
+  const Eigen::Vector3d p_PT(pb.max.x() + gap + half_depth,
+                             0.5 * (pb.min.y() + pb.max.y()) + lateral, 0);
+  const Eigen::Vector3d p_WT = piece.X_WO * p_PT;
+  const double piece_yaw = YawOf(piece.X_WO.linear());
+  const double yaw = piece_yaw + (long_x ? M_PI / 2 : 0.0);
+  // PlaceObject puts the object's origin: shift by its footprint's centre, turned.
+  const Eigen::Vector2d c_T = Eigen::Rotation2Dd(yaw) * (0.5 * (tb.min + tb.max)).head<2>();
+  scene::PlaceObject(&t, p_WT.x() - c_T.x(), p_WT.y() - c_T.y(), yaw);
+  return t;
+}
+
+}  // namespace
 
 scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
                                  const std::vector<std::string>& default_categories) {
@@ -87,7 +127,18 @@ scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
     const double yaw = rng.Uniform(-M_PI, M_PI);
     scene::PlaceObject(&o, (i % side) * kTrainingGroundSpacing, (i / side) * kTrainingGroundSpacing,
                        yaw);
-    s.AddObject(std::move(o));
+    // Drawn only when clutter is on, so grounds without it keep their random streams.
+    const auto& c = config.object;
+    if (c.clutter_share > 0 && rng.Bernoulli(c.clutter_share)) {
+      const int kind = static_cast<int>(rng.UniformInt(3));
+      const double gap = rng.Uniform(c.clutter_gap_min, c.clutter_gap_max);
+      const double lateral = rng.Uniform(-0.3, 0.3);
+      scene::Object t = ClutterTable(o, kind, gap, lateral, "clutter_" + std::to_string(i));
+      s.AddObject(std::move(o));
+      s.AddObject(std::move(t));
+    } else {
+      s.AddObject(std::move(o));
+    }
   }
   return s;
 }
@@ -400,6 +451,21 @@ bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
   return FreeAt(*context_.height_grid, p, radius);
 }
 
+bool ObjectSkill::BlockedByClutter(const ObjectGeometry& g, const Eigen::Vector2d& p_W) const {
+  constexpr double kRadius = 0.15, kMargin = 0.05;
+  const Eigen::Isometry3d X_OW = g.X_WO.inverse();
+  for (int k = -1; k < 8; ++k) {
+    Eigen::Vector2d q = p_W;
+    if (k >= 0) q += kRadius * Eigen::Vector2d(std::cos(k * M_PI / 4), std::sin(k * M_PI / 4));
+    if (context_.height_grid->Height(q.x(), q.y()) < kFloorTolerance) continue;
+    const Eigen::Vector3d q_O = X_OW * Eigen::Vector3d(q.x(), q.y(), 0);
+    const bool own = q_O.x() > g.local.min.x() - kMargin && q_O.x() < g.local.max.x() + kMargin &&
+                     q_O.y() > g.local.min.y() - kMargin && q_O.y() < g.local.max.y() + kMargin;
+    if (!own) return true;
+  }
+  return false;
+}
+
 Eigen::Vector2d ObjectSkill::SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const {
   const auto& o = config_.object;
   // Drawn only when the share is set, so configs without it keep their random streams.
@@ -521,7 +587,14 @@ bool ObjectSkill::FurnitureClipInit(int env_id, double lateral, Rng& rng, sim::I
   const int clip =
       ChooseFurnitureClip(reference_clips_, geometry(env_id), lateral, rng, &placement);
   if (clip < 0) return false;
-  PlaceReference(env_id, clip, PreContactTime(clip, rng), placement, init);
+  const double t = PreContactTime(clip, rng);
+  if (config_.object.clutter_share > 0) {
+    // A clip's approach may run through the table in front of the piece: such starts fall
+    // back to a standing start on free floor.
+    const Eigen::Vector3d root = placement.Apply(context_.motions->StateAt(clip, t).pose.root_pos);
+    if (BlockedByClutter(geometry(env_id), root.head<2>())) return false;
+  }
+  PlaceReference(env_id, clip, t, placement, init);
   return true;
 }
 

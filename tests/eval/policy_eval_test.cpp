@@ -334,6 +334,17 @@ TEST(PolicyEvalTest, SitOnHeldOutObjects) {
     EXPECT_NEAR(t.goal_offset.norm(), t.contact_error, 1e-9);
   }
   EXPECT_EQ(r.ToJson()["results"][0]["goal_offset"].size(), 3u);
+  EXPECT_EQ(r.ToJson()["clutter"], 0.0);
+  // --clutter puts a table before the pieces; it needs the policy's target categories.
+  o.clutter = 1;
+  ExpectError([&] { EvaluatePolicy(o); }, {"object_categories", "clutter_share"});
+  sc.object.object_categories = {"chair"};
+  o.checkpoint = TinyPolicy(sc, 30, "eval_sit_clutter");
+  const PolicyEvalReport cluttered = EvaluatePolicy(o);
+  EXPECT_EQ(cluttered.clutter, 1.0);
+  EXPECT_EQ(cluttered.results.size(), 2u);
+  o.clutter = 1.5;
+  ExpectError([&] { EvaluatePolicy(o); }, {"--clutter", "[0, 1]"});
 }
 
 // Get-up trials are grouped by how they started (seat, bed, floor clip, fall state): every

@@ -435,6 +435,76 @@ TEST(SitSkillTest, WideTrainingScaleKeepsOutOfTheHeldOutBands) {
   EXPECT_NE(error.find("[1.1, 2]"), std::string::npos) << error;
 }
 
+// clutter_share puts a table before each drawn piece, its long side across the front at a gap
+// within the range; tables never become targets, and reference starts whose root would stand
+// in a table fall back to standing starts on free floor.
+TEST(SitSkillTest, ClutterPutsTablesBeforeSeats) {
+  SkillConfig c = SitConfig();
+  c.object.num_objects = 12;
+  c.object.clutter_share = 1;
+  c.object.clutter_gap_min = 0.5;
+  c.object.clutter_gap_max = 0.8;
+  Rng rng(7);
+  const scene::Scene ground = BuildTrainingGround(c, rng, {});
+  ASSERT_EQ(ground.objects.size(), 24u);
+  for (size_t k = 0; k < ground.objects.size(); k += 2) {
+    const scene::Object& seat = ground.objects[k];
+    const scene::Object& table = ground.objects[k + 1];
+    EXPECT_TRUE(table.category == "table" || table.category == "desk") << table.category;
+    const scene::Aabb local = seat.LocalBounds();
+    scene::Aabb t_S;  // the table's vertices in the seat's frame
+    for (const auto& part : table.parts)
+      for (const auto& v : part.mesh.vertices) t_S.Extend(seat.X_WO.inverse() * v);
+    const double gap = t_S.min.x() - local.max.x();
+    EXPECT_GT(gap, 0.5 - 1e-6) << seat.instance;
+    EXPECT_LT(gap, 0.8 + 1e-6) << seat.instance;
+    EXPECT_GE(t_S.max.y() - t_S.min.y(), t_S.max.x() - t_S.min.x() - 1e-6) << "long side across";
+  }
+
+  c.reference_init_prob = 1;
+  c.object.num_objects = 4;
+  c.object.clutter_gap_min = c.object.clutter_gap_max = 0.45;
+  auto s = MakeSkillEnv(c, 1);
+  auto* sit = dynamic_cast<SitSkill*>(s.setup.skill.get());
+  ASSERT_NE(sit, nullptr);
+  for (const ObjectGeometry& g : sit->objects()) EXPECT_NE(g.category, "table");
+  EXPECT_EQ(sit->objects().size(), 4u);
+  const scene::SceneHeightGrid& grid = *s.setup.context.height_grid;
+  int reference = 0, fallback = 0;
+  Rng starts(3);
+  for (int t = 0; t < 300; ++t) {
+    sim::InitialState init;
+    sit->SampleInitialState(0, starts, &init);
+    const Eigen::Vector3d& p = init.pose.root_pos;
+    (init.reference ? reference : fallback)++;
+    const ObjectGeometry& g = sit->geometry(0);
+    const Eigen::Vector3d p_O = g.X_WO.inverse() * Eigen::Vector3d(p.x(), p.y(), 0);
+    const bool over_piece = p_O.x() > g.local.min.x() - 0.05 && p_O.x() < g.local.max.x() + 0.05 &&
+                            p_O.y() > g.local.min.y() - 0.05 && p_O.y() < g.local.max.y() + 0.05;
+    if (!over_piece) EXPECT_LT(grid.Height(p.x(), p.y()), 0.05) << "start inside the table";
+  }
+  // Without tables every draw finds a clip; with them the clips that walk in from the front
+  // through the table fall back.
+  c.object.clutter_share = 0;
+  auto plain = MakeSkillEnv(c, 1);
+  int plain_fallback = 0;
+  Rng plain_starts(3);
+  for (int t = 0; t < 300; ++t) {
+    sim::InitialState init;
+    plain.setup.skill->SampleInitialState(0, plain_starts, &init);
+    plain_fallback += !init.reference;
+  }
+  EXPECT_GT(reference, 150);
+  EXPECT_GT(fallback, 5);
+  EXPECT_EQ(plain_fallback, 0);
+  c.object.clutter_share = 1;
+
+  c.object.object_categories = {"chair", "table"};
+  const std::string error = sims::testing::ErrorOf([&] { c.object.Validate(); });
+  EXPECT_NE(error.find("object_categories"), std::string::npos) << error;
+  EXPECT_NE(error.find("clutter_share"), std::string::npos) << error;
+}
+
 TEST(SitSkillTest, SuccessHeldTruncatesAndForceTerminates) {
   SkillConfig c = HandPlacedSitConfig();
   c.success_hold_steps = 3;

@@ -49,6 +49,9 @@ struct PolicyEvalOptions {
   int num_objects = 16;
   sim::ObsAblation ablation;    ///< Inputs withheld from the policy (--no-text, ...).
   double reference_starts = 0;  ///< Share of trials started from motion clips (0–1).
+  /// Share of the evaluation pieces with a table in front (ObjectParams::clutter_share), 0 =
+  /// lone pieces whatever the training used, so every policy meets the same test set.
+  double clutter = 0;
   /// Action smoothing α the trials run with (sim::EnvConfig::action_smoothing), to measure
   /// what a policy set's action_smoothing does; negative = the one the policy trained with.
   double action_smoothing = -1;
@@ -140,6 +143,7 @@ struct PolicyEvalReport {
   double action_rate_rms = 0;
   sim::ObsAblation ablation;    ///< Inputs that were withheld.
   double reference_starts = 0;  ///< Share of trials asked to start from motion clips.
+  double clutter = 0;           ///< Share of the pieces with a table in front.
   double action_smoothing = 0;  ///< The action smoothing α the trials ran with.
   /// Per start kind (skills with start labels, e.g. get-up's seat/bed/floor/fall).
   struct StartGroup {

@@ -57,6 +57,15 @@ struct ObjectParams {
   /// Share of the reference starts taken from the hand-off states, placed on the env's object
   /// when one fits it (else a reference start as usual); labelled "handoff".
   double handoff_share = 0;
+  /// Share of the training ground's pieces that get a table in front of them (a dining table,
+  /// a desk or a coffee table, drawn alike), as the stories' rooms put one before most chairs
+  /// and sofas: the sit policy trained on lone pieces squatted beside the rooms' chairs
+  /// (sit/TRAINING.md); 0 = lone pieces. The tables are never targets: object_categories
+  /// must name the targets and neither "table" nor "desk".
+  double clutter_share = 0;
+  /// Gap between the piece's front face and the table's near edge (m), drawn uniformly.
+  double clutter_gap_min = 0.45;
+  double clutter_gap_max = 1.0;  ///< ...
 
   /// Lists the fields for JSON binding (keys as in the skill config).
   template <class A>
@@ -80,6 +89,9 @@ struct ObjectParams {
     a->Visit(SIMS_NVP(wide_near_share));
     a->Visit(SIMS_NVP(handoff_states));
     a->Visit(SIMS_NVP(handoff_share));
+    a->Visit(SIMS_NVP(clutter_share));
+    a->Visit(SIMS_NVP(clutter_gap_min));
+    a->Visit(SIMS_NVP(clutter_gap_max));
     // Get-up's names from when only get-up had hand-off starts (its checkpoints and policies).
     a->VisitRenamed("getup_handoff_states", SIMS_NVP(handoff_states));
     a->VisitRenamed("getup_handoff_share", SIMS_NVP(handoff_share));

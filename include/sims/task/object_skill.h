@@ -242,6 +242,8 @@ class ObjectSkill : public Skill {
   Eigen::Vector2d SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const;
   /// True when the floor disk of `radius` around p is free (height grid).
   bool FreeFloor(const Eigen::Vector2d& p, double radius) const;
+  /// True when something other than object g stands within 0.15 m of p (height grid).
+  bool BlockedByClutter(const ObjectGeometry& g, const Eigen::Vector2d& p_W) const;
   /// Fills `init` from clip `clip` at time t placed by `placement` (pose + AMP history).
   void PlaceReference(int env_id, int clip, double t, const ClipPlacement& placement,
                       sim::InitialState* init);
