@@ -1,5 +1,6 @@
 #include "sims/eval/motion_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
@@ -84,8 +85,13 @@ void ActionRateMeter::Add(const double* before, const double* now, int n) {
 double ActionRateMeter::Rms() const { return count_ ? std::sqrt(sum_sq_ / count_) : 0.0; }
 
 void FootSlidingMeter::AddRecord(const io::MotionRecord& record) {
+  AddRecord(record, 0, static_cast<int>(record.frames.size()) - 1);
+}
+
+void FootSlidingMeter::AddRecord(const io::MotionRecord& record, int first, int last) {
   const double dt = 1.0 / record.fps;
-  for (size_t t = 1; t < record.frames.size(); ++t)
+  last = std::min(last, static_cast<int>(record.frames.size()) - 1);
+  for (int t = std::max(first, 0) + 1; t <= last; ++t)
     for (int foot : {humanoid::kLeftFoot, humanoid::kRightFoot})
       Add(record.frames[t - 1].body_pos[foot], record.frames[t].body_pos[foot], dt);
 }

@@ -119,6 +119,7 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
   // Which skill the failures come from: keyframes and successes per skill, all difficulties.
   struct SkillTally {
     int keyframes = 0, succeeded = 0, falls = 0;
+    eval::FootSlidingMeter sliding;  // pooled over the frames its keyframes ran
   };
   std::map<std::string, SkillTally> per_skill;
   ProgressReporter progress("eval_story", static_cast<int64_t>(entries.size()), "stories", 5.0);
@@ -158,6 +159,9 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
             SkillTally& t = per_skill[k.skill];
             ++t.keyframes, t.succeeded += k.success, t.falls += k.falls;
           }
+          for (const auto& a : record.keyframes)
+            if (a.reached())
+              per_skill[a.skill].sliding.AddRecord(record, a.start_frame, a.end_frame);
           sr += result.success_rate, ce += result.mean_contact_error, ss += result.success_steps;
           pen += p.fraction_inside, depth = std::max(depth, p.max_depth), slide += s.mean_speed;
           ++n;
@@ -187,11 +191,18 @@ nlohmann::json EvaluateStories(const StoryEvalOptions& o) {
     per[difficulty] = d;
   }
   nlohmann::json skills = nlohmann::json::object();
-  for (const auto& [skill, t] : per_skill)
+  int contact_pairs = 0;
+  for (const auto& [skill, t] : per_skill) contact_pairs += t.sliding.Result().contact_pairs;
+  for (const auto& [skill, t] : per_skill) {
+    const eval::FootSliding s = t.sliding.Result();
     skills[skill] = {{"keyframes", t.keyframes},
                      {"succeeded", t.succeeded},
                      {"success_rate", static_cast<double>(t.succeeded) / t.keyframes},
-                     {"falls", t.falls}};
+                     {"falls", t.falls},
+                     {"foot_sliding_m_per_s", s.mean_speed},
+                     {"foot_contact_share",
+                      contact_pairs ? static_cast<double>(s.contact_pairs) / contact_pairs : 0.0}};
+  }
   nlohmann::json out = {
       {"per_difficulty", per},
       {"per_skill", skills},
@@ -310,9 +321,11 @@ std::string StoryEvalHtml(const nlohmann::json& report) {
   std::string skill_rows;
   const nlohmann::json per_skill = report.value("per_skill", nlohmann::json::object());
   for (const auto& [skill, t] : per_skill.items())
-    skill_rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                              skill, t.value("keyframes", 0), t.value("succeeded", 0),
-                              num(t, "success_rate", 1, 100.0), t.value("falls", 0));
+    skill_rows += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+        skill, t.value("keyframes", 0), t.value("succeeded", 0), num(t, "success_rate", 1, 100.0),
+        t.value("falls", 0), num(t, "foot_sliding_m_per_s", 3),
+        num(t, "foot_contact_share", 1, 100.0));
   const nlohmann::json ablation = report.value("ablation", nlohmann::json::object());
   return fmt::format(
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>eval_story</title>\n"
@@ -329,7 +342,10 @@ std::string StoryEvalHtml(const nlohmann::json& report) {
       "same measure: {} m/s.</p>\n"
       "<h2>Keyframes per skill (all difficulties)</h2>\n<table>\n"
       "<tr><th>skill</th><th>keyframes</th><th>succeeded</th><th>success rate</th>"
-      "<th>falls</th></tr>\n{}</table>\n</body></html>\n",
+      "<th>falls</th><th>foot sliding (m/s)</th><th>share of foot contact</th></tr>\n{}"
+      "</table>\n<p>A skill's foot sliding pools the frames its keyframes ran (the per "
+      "difficulty figure averages stories); its share is of all foot-contact frame pairs.</p>\n"
+      "</body></html>\n",
       report.value("policies", std::string("?")), ablation.dump(), rows,
       num(report, "reference_foot_sliding_m_per_s", 3), skill_rows);
 }

@@ -42,6 +42,14 @@ TEST(MotionMetricsTest, FootSlidingOfAHandMadeGlide) {
   EXPECT_DOUBLE_EQ(s.sliding_ratio, 1.0);
   // Lifted 0.5 m: no foot on the floor, nothing counted.
   EXPECT_EQ(MeasureFootSliding(Standing(0.3, 31, {0, 0, 1.4})).contact_pairs, 0);
+  // A stretch of frames (a story keyframe's): the pairs ending in frames 11..20, clipped.
+  FootSlidingMeter stretch;
+  stretch.AddRecord(Standing(0.3), 10, 20);
+  EXPECT_EQ(stretch.Result().contact_pairs, 2 * 10);
+  EXPECT_NEAR(stretch.Result().mean_speed, 0.3, 1e-6);
+  FootSlidingMeter clipped;
+  clipped.AddRecord(Standing(0.3), 25, 99);
+  EXPECT_EQ(clipped.Result().contact_pairs, 2 * 5);
 }
 
 TEST(MotionMetricsTest, PenetrationOfAKnownBox) {

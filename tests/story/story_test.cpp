@@ -294,7 +294,10 @@ TEST(StoryBatchTest, BatchedStoriesEqualSequentialRuns) {
     succeeded += row["success_rate"].get<double>() * row["keyframes"].get<int>();
   }
   int tallied_success = 0;
+  double contact_share = 0;
   for (const auto& [skill, t] : sequential["per_skill"].items()) {
+    contact_share += t["foot_contact_share"].get<double>();
+    EXPECT_GE(t["foot_sliding_m_per_s"].get<double>(), 0.0);
     tallied += t["keyframes"].get<int>();
     tallied_success += t["succeeded"].get<int>();
     EXPECT_DOUBLE_EQ(t["success_rate"].get<double>(),
@@ -302,6 +305,7 @@ TEST(StoryBatchTest, BatchedStoriesEqualSequentialRuns) {
   }
   EXPECT_EQ(tallied, keyframes);
   EXPECT_NEAR(tallied_success, succeeded, 1e-6);
+  EXPECT_NEAR(contact_share, 1.0, 1e-9);  // every foot-contact pair belongs to one skill
   EXPECT_TRUE(sequential["per_skill"].contains("walk"));
   EXPECT_TRUE(in_threes["timing"].contains("run_s"));
 }
@@ -323,8 +327,12 @@ TEST(StoryEvalHtmlTest, OneRowPerDifficultyWithItsFigures) {
                                {"fid", 3.335},
                                {"apd", 1.384}}},
                              {"hard", {{"stories", 2}, {"success_rate", 0.5}}}}}};
-  report["per_skill"]["sit"] = {
-      {"keyframes", 8}, {"succeeded", 2}, {"success_rate", 0.25}, {"falls", 1}};
+  report["per_skill"]["sit"] = {{"keyframes", 8},
+                                {"succeeded", 2},
+                                {"success_rate", 0.25},
+                                {"falls", 1},
+                                {"foot_sliding_m_per_s", 0.5121},
+                                {"foot_contact_share", 0.4}};
   report["reference_foot_sliding_m_per_s"] = 0.0312;
   const std::string html = StoryEvalHtml(report);
   EXPECT_NE(html.find("demonstration clips by the same measure: 0.031 m/s"), std::string::npos)
@@ -339,7 +347,8 @@ TEST(StoryEvalHtmlTest, OneRowPerDifficultyWithItsFigures) {
             std::string::npos)
       << html;
   EXPECT_EQ(html.find("mid"), std::string::npos);
-  EXPECT_NE(html.find("<tr><td>sit</td><td>8</td><td>2</td><td>25.0 %</td><td>1</td></tr>"),
+  EXPECT_NE(html.find("<tr><td>sit</td><td>8</td><td>2</td><td>25.0 %</td><td>1</td><td>0.512</td>"
+                      "<td>40.0 %</td></tr>"),
             std::string::npos)
       << html;
 }

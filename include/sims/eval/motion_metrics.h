@@ -40,6 +40,9 @@ class FootSlidingMeter {
   void Add(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double dt);
   /// Counts both feet over every consecutive frame pair of a recorded motion.
   void AddRecord(const io::MotionRecord& record);
+  /// Counts both feet over the frame pairs ending in frames first + 1 .. last (inclusive,
+  /// clipped to the record): one keyframe's stretch of a story.
+  void AddRecord(const io::MotionRecord& record, int first, int last);
   /// The figures so far.
   FootSliding Result() const;
 
