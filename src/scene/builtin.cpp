@@ -319,6 +319,12 @@ FurnitureParams DefaultFurnitureParams(const std::string& category) {
   return p;
 }
 
+FurnitureParams CoffeeTableParams() {
+  FurnitureParams p = DefaultFurnitureParams("table");
+  p.width = 1.0, p.depth = 0.55, p.height = 0.45, p.seat_height = 0.45;
+  return p;
+}
+
 Object MakeFurniture(const std::string& category, const FurnitureParams& params,
                      const std::string& instance) {
   CheckCategory(category);
@@ -503,12 +509,7 @@ void FurnishBedroom(Scene* s, const std::string& id, const RoomFrame& f) {
 
 void FurnishLivingRoom(Scene* s, const std::string& id, const RoomFrame& f) {
   Add(s, id, f, Piece("sofa"), 0.55, 2.5, 0);
-  Add(s, id, f,
-      Piece("table",
-            [](FurnitureParams& p) {
-              p.width = 1.0, p.depth = 0.55, p.height = 0.45, p.seat_height = 0.45;
-            }),
-      2.05, 2.5, 0);
+  Add(s, id, f, Piece("table", [](FurnitureParams& p) { p = CoffeeTableParams(); }), 2.05, 2.5, 0);
   Add(s, id, f, Piece("armchair"), 0.95, 4.5, -90);
   Add(s, id, f, Piece("armchair"), 0.95, 0.5, 90);
   Add(s, id, f, Piece("shelf"), 4.76, 4.2, 180);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "sims/core/error.h"
 #include "sims/humanoid/features.h"
@@ -31,14 +32,22 @@ scene::Aabb PartLocalBounds(const scene::Object& o, int part) {
   return b;
 }
 
-bool FreeAt(const scene::SceneHeightGrid& grid, const Eigen::Vector2d& p, double radius) {
-  if (grid.Height(p.x(), p.y()) >= kFloorTolerance) return false;
+// True when `hit` holds at p or at one of eight points `radius` around it (centre first).
+template <class Hit>
+bool AnyOnDisk(const Eigen::Vector2d& p, double radius, const Hit& hit) {
+  if (hit(p)) return true;
   for (int k = 0; k < 8; ++k) {
     const double a = k * M_PI / 4;
-    if (grid.Height(p.x() + radius * std::cos(a), p.y() + radius * std::sin(a)) >= kFloorTolerance)
-      return false;
+    if (hit(Eigen::Vector2d(p.x() + radius * std::cos(a), p.y() + radius * std::sin(a))))
+      return true;
   }
-  return true;
+  return false;
+}
+
+bool FreeAt(const scene::SceneHeightGrid& grid, const Eigen::Vector2d& p, double radius) {
+  return !AnyOnDisk(p, radius, [&](const Eigen::Vector2d& q) {
+    return grid.Height(q.x(), q.y()) >= kFloorTolerance;
+  });
 }
 }  // namespace
 
@@ -87,9 +96,10 @@ namespace {
 // front face, its long side across the piece's front, shifted `lateral` along it.
 scene::Object ClutterTable(const scene::Object& piece, int kind, double gap, double lateral,
                            const std::string& instance) {
-  scene::FurnitureParams p = scene::DefaultFurnitureParams(kind == 1 ? "desk" : "table");
-  if (kind == 2) p.width = 1.0, p.depth = 0.55, p.height = 0.45, p.seat_height = 0.45;
-  scene::Object t = scene::MakeFurniture(kind == 1 ? "desk" : "table", p, instance);
+  const char* category = kind == 1 ? "desk" : "table";
+  const scene::FurnitureParams p =
+      kind == 2 ? scene::CoffeeTableParams() : scene::DefaultFurnitureParams(category);
+  scene::Object t = scene::MakeFurniture(category, p, instance);
   const scene::Aabb tb = t.LocalBounds();
   const Eigen::Vector3d t_size = tb.max - tb.min;
   // Turned so that its longer side runs along the piece's front.
@@ -129,16 +139,15 @@ scene::Scene BuildTrainingGround(const SkillConfig& config, Rng& rng,
                        yaw);
     // Drawn only when clutter is on, so grounds without it keep their random streams.
     const auto& c = config.object;
+    std::optional<scene::Object> table;
     if (c.clutter_share > 0 && rng.Bernoulli(c.clutter_share)) {
       const int kind = static_cast<int>(rng.UniformInt(3));
       const double gap = rng.Uniform(c.clutter_gap_min, c.clutter_gap_max);
       const double lateral = rng.Uniform(-0.3, 0.3);
-      scene::Object t = ClutterTable(o, kind, gap, lateral, "clutter_" + std::to_string(i));
-      s.AddObject(std::move(o));
-      s.AddObject(std::move(t));
-    } else {
-      s.AddObject(std::move(o));
+      table = ClutterTable(o, kind, gap, lateral, "clutter_" + std::to_string(i));
     }
+    s.AddObject(std::move(o));
+    if (table) s.AddObject(std::move(*table));
   }
   return s;
 }
@@ -454,16 +463,13 @@ bool ObjectSkill::FreeFloor(const Eigen::Vector2d& p, double radius) const {
 bool ObjectSkill::BlockedByClutter(const ObjectGeometry& g, const Eigen::Vector2d& p_W) const {
   constexpr double kRadius = 0.15, kMargin = 0.05;
   const Eigen::Isometry3d X_OW = g.X_WO.inverse();
-  for (int k = -1; k < 8; ++k) {
-    Eigen::Vector2d q = p_W;
-    if (k >= 0) q += kRadius * Eigen::Vector2d(std::cos(k * M_PI / 4), std::sin(k * M_PI / 4));
-    if (context_.height_grid->Height(q.x(), q.y()) < kFloorTolerance) continue;
+  return AnyOnDisk(p_W, kRadius, [&](const Eigen::Vector2d& q) {
+    if (context_.height_grid->Height(q.x(), q.y()) < kFloorTolerance) return false;
     const Eigen::Vector3d q_O = X_OW * Eigen::Vector3d(q.x(), q.y(), 0);
     const bool own = q_O.x() > g.local.min.x() - kMargin && q_O.x() < g.local.max.x() + kMargin &&
                      q_O.y() > g.local.min.y() - kMargin && q_O.y() < g.local.max.y() + kMargin;
-    if (!own) return true;
-  }
-  return false;
+    return !own;  // something else stands there
+  });
 }
 
 Eigen::Vector2d ObjectSkill::SpawnPoint(int env_id, const ObjectGeometry& g, Rng& rng) const {

@@ -60,6 +60,8 @@ std::vector<std::string> ProceduralCategories();
 
 /// Nominal dimensions of a category (throws sims::Error listing the categories if unknown).
 FurnitureParams DefaultFurnitureParams(const std::string& category);
+/// A low coffee table (category "table"): the living room's, also the training ground's clutter.
+FurnitureParams CoffeeTableParams();
 
 /// Builds a piece at the origin (X_WO = identity) with named parts and sampled point clouds.
 /// Part names: chair "seat surface", "legs", "back", "left arm", "right arm"; armchair/sofa
